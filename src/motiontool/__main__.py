@@ -1,0 +1,5 @@
+import sys
+
+from motiontool.cli import main
+
+sys.exit(main())

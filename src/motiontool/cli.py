@@ -1,0 +1,86 @@
+"""`motiontool` entry point: the IDE by default, sub-commands for headless work."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+
+from motiontool import __version__
+
+
+def _cmd_params(args: argparse.Namespace) -> int:
+    from motiontool.paramdb import ParameterError, database
+
+    try:
+        db = database()
+    except ParameterError as exc:
+        print(f"motiontool params: {exc}", file=sys.stderr)
+        return 1
+    rows = list(db)
+    if args.group:
+        rows = [p for p in rows if p in db.group(args.group)]
+    if args.find:
+        found = set(db.find(args.find))
+        rows = [p for p in rows if p in found]
+    for parameter in rows:
+        print(parameter.format_line())
+    return 0 if rows else 1
+
+
+def _cmd_check(args: argparse.Namespace) -> int:
+    from motiontool.aposs.driver import check_files
+
+    return check_files(args.files, include_dirs=args.include, out=sys.stdout)
+
+
+def _cmd_compile(args: argparse.Namespace) -> int:
+    from motiontool.aposs.driver import compile_file
+
+    return compile_file(args.file, args.output, include_dirs=args.include, debug=args.debug,
+                        out=sys.stdout)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="motiontool",
+        description="Engineering IDE for the MCO 305 motion controller. Without a sub-command the IDE opens.")
+    parser.add_argument("--version", action="version", version=f"motiontool {__version__}")
+    parser.add_argument("--screenshot", type=Path, metavar="PATH",
+                        help="open the window, save a PNG of it once painted, and exit")
+    parser.add_argument("--open", type=Path, metavar="FILE", dest="open_file",
+                        help="open this program in the editor")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+
+    p = sub.add_parser("params", help="list MCO 305 parameters, one per line")
+    p.add_argument("--find", metavar="TEXT", help="only parameters whose number, name or text contains TEXT")
+    p.add_argument("--group", metavar="PREFIX", help="only parameters of this group, e.g. 32-6")
+    p.set_defaults(func=_cmd_params)
+
+    p = sub.add_parser("check", help="syntax-check APOSS programs (GCC-style diagnostics)")
+    p.add_argument("files", nargs="+", type=Path, metavar="FILE")
+    p.add_argument("--include", "-I", action="append", type=Path, default=[], metavar="DIR",
+                   help="extra system include directory for #include <file>")
+    p.set_defaults(func=_cmd_check)
+
+    p = sub.add_parser("compile", help="compile an APOSS program to a program image")
+    p.add_argument("file", type=Path, metavar="FILE")
+    p.add_argument("-o", "--output", type=Path, required=True, metavar="OUT")
+    p.add_argument("--include", "-I", action="append", type=Path, default=[], metavar="DIR")
+    p.add_argument("--debug", action="store_true", help="keep what a debugger needs (statement stops)")
+    p.set_defaults(func=_cmd_compile)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    if args.command is None:
+        from motiontool.ui.app import run_gui
+
+        return run_gui(open_file=args.open_file, screenshot=args.screenshot)
+    return args.func(args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

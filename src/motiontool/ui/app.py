@@ -1,0 +1,67 @@
+"""Start the Qt application: the GUI mode of the `motiontool` command."""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+NO_DISPLAY_HELP = """\
+motiontool: no display found (neither DISPLAY nor WAYLAND_DISPLAY is set), so the IDE window cannot open.
+  - On a machine without a screen, render the window offscreen and save a picture of it:
+        QT_QPA_PLATFORM=offscreen motiontool --screenshot window.png
+  - Or work headless with the sub-commands:  motiontool params | check | compile | run   (--help for each)
+  - Or start a virtual display:  xvfb-run motiontool
+"""
+
+
+def has_display() -> bool:
+    """True when Qt can open windows: a display server, or an explicitly chosen platform plugin."""
+    if sys.platform in ("win32", "darwin"):
+        return True
+    return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")
+                or os.environ.get("QT_QPA_PLATFORM"))
+
+
+def run_gui(open_file: Path | None = None, screenshot: Path | None = None) -> int:
+    """Show the main window; with `screenshot`, save a PNG once it has painted and exit."""
+    if not has_display():
+        if screenshot is None:
+            sys.stderr.write(NO_DISPLAY_HELP)
+            return 1
+        os.environ["QT_QPA_PLATFORM"] = "offscreen"  # a screenshot needs no screen
+    from PySide6.QtCore import QTimer
+    from PySide6.QtWidgets import QApplication
+
+    from motiontool.ui.main_window import MainWindow
+
+    app = QApplication.instance() or QApplication(sys.argv[:1])
+    app.setApplicationName("motiontool")
+    app.setOrganizationName("motiontool")
+    window = MainWindow()
+    if open_file is not None:
+        try:
+            window.open_file(open_file)
+        except OSError as exc:
+            sys.stderr.write(f"motiontool: cannot open {open_file}: {exc.strerror}\n")
+            return 1
+    else:
+        window.new_file()
+    window.show()
+    if screenshot is None:
+        return app.exec()
+
+    result = {"code": 1}
+
+    def grab() -> None:
+        screenshot.parent.mkdir(parents=True, exist_ok=True)
+        ok = window.grab().save(str(screenshot), "PNG")
+        result["code"] = 0 if ok else 1
+        if not ok:
+            sys.stderr.write(f"motiontool: could not write {screenshot}\n")
+        app.quit()
+
+    # Grab after the event loop has run a few paint cycles so the picture is complete.
+    QTimer.singleShot(300, grab)
+    app.exec()
+    return result["code"]

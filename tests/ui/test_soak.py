@@ -1,0 +1,34 @@
+"""Soak guard for the Qt stack: 8 live pyqtgraph curves for 60 s must not crash or leak.
+
+It protects the PySide6 pin (< 6.12: 6.12.0 decrements None's refcount on every void call under
+Python 3.11 and aborts the interpreter after enough calls).
+"""
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+SECONDS = float(os.environ.get("MOTIONTOOL_SOAK_SECONDS", "60"))
+
+
+@pytest.mark.soak
+def test_eight_live_curves_for_a_minute():
+    script = Path(__file__).with_name("soak_plot.py")
+    proc = subprocess.run([sys.executable, str(script), str(SECONDS)], capture_output=True, text=True,
+                          timeout=SECONDS + 120, env={**os.environ, "QT_QPA_PLATFORM": "offscreen"})
+    assert proc.returncode == 0, f"plot process died ({proc.returncode}): {proc.stderr[-2000:]}"
+    report = json.loads(proc.stdout.strip().splitlines()[-1])
+    assert report["frames"] > SECONDS * 10, "the plot hardly updated"
+    rss = report["rss_kib"]
+    assert len(rss) >= 6
+    # Steady growth: compare the median of the last third with the median of the middle third
+    # (the first third includes warm-up allocations).
+    third = len(rss) // 3
+    middle = sorted(rss[third:2 * third])[third // 2]
+    last = sorted(rss[2 * third:])[len(rss[2 * third:]) // 2]
+    growth_kib = last - middle
+    assert growth_kib < 8 * 1024, f"memory grows steadily: +{growth_kib} KiB over a third of the run"
