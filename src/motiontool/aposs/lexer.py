@@ -1,0 +1,177 @@
+"""APOSS lexer: source text → tokens with exact file:line:col.
+
+Statements end at line ends, so NEWLINE is a token. A line whose first character (after blanks) is ``#`` is
+a preprocessor directive and becomes one DIRECTIVE token holding the rest of the (spliced) line.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from motiontool.aposs.diagnostics import CompileError, Diagnostic, Location
+
+IDENT, INT, FLOAT, STRING, OP, NEWLINE, DIRECTIVE, EOF = (
+    "IDENT", "INT", "FLOAT", "STRING", "OP", "NEWLINE", "DIRECTIVE", "EOF")
+
+
+@dataclass(slots=True)
+class Token:
+    kind: str
+    text: str           # as written (for IDENT: original case)
+    value: object       # int / float / str / upper-case identifier
+    loc: Location
+    # Macro names this token came out of (no re-expansion inside its own expansion) and
+    # the chain of macro uses that produced it, shown as notes in diagnostics.
+    hide: frozenset[str] = frozenset()
+    origin: tuple[tuple[str, Location], ...] = ()
+
+    def is_op(self, *ops: str) -> bool:
+        return self.kind == OP and self.text in ops
+
+    def is_word(self, *words: str) -> bool:
+        return self.kind == IDENT and self.value in words
+
+    def __repr__(self) -> str:
+        return f"Token({self.kind}, {self.text!r}, {self.loc})"
+
+
+_TOKEN = re.compile(r"""
+ (?P<ws>(?:[ \t\f\r]|\\\r?\n)+)
+|(?P<nl>\n)
+|(?P<lc>//[^\n]*)
+|(?P<bc>/\*)
+|(?P<float>\d+\.\d+(?:[eE][+-]?\d+)?|\d+[eE][+-]?\d+)
+|(?P<hex>0[xX][0-9A-Fa-f]+)
+|(?P<int>\d+)
+|(?P<ident>[A-Za-z_][A-Za-z0-9_]*)
+|(?P<str>"[^"\n]*")
+|(?P<chr>'[^'\n]')
+|(?P<op><<|>>|==|!=|<=|>=|\+\+|--|[-+*%^&|~<>=()\[\]{},;:.!])
+""", re.VERBOSE)
+_DIRECTIVE = re.compile(r"[ \t\f\r]*#((?:[^\n\\]|\\\r?\n|\\(?!\r?\n))*)")
+_BAD_NUMBER_TAIL = re.compile(r"[A-Za-z0-9_]")
+_NAMES = {"\u2013": "EN DASH", "\u2014": "EM DASH", "\u201c": "LEFT DOUBLE QUOTATION MARK",
+          "\u201d": "RIGHT DOUBLE QUOTATION MARK", "\u2018": "LEFT SINGLE QUOTATION MARK",
+          "\u2019": "RIGHT SINGLE QUOTATION MARK", "\u00a0": "NO-BREAK SPACE"}
+_HINTS = {"\u2013": "-", "\u2014": "-", "\u201c": '"', "\u201d": '"', "\u2018": "'", "\u2019": "'",
+          "\u00a0": " "}
+
+
+def tokenize(text: str, file: str, line: int = 1, col: int = 1,
+             warnings: list[Diagnostic] | None = None) -> list[Token]:
+    """Split `text` into tokens; the first character is at (line, col). Ends with NEWLINE and EOF.
+
+    Raises CompileError at the offending place for characters or literals that are not APOSS.
+    Warnings (octal constants) are appended to `warnings` when given.
+    """
+    tokens: list[Token] = []
+    pos, n = 0, len(text)
+    line_start = -(col - 1)  # offset of the current line's first character
+    at_line_start = True
+    match = _TOKEN.match
+    append = tokens.append
+
+    def loc_at(p: int) -> Location:
+        return Location(file, line, p - line_start + 1)
+
+    while pos < n:
+        if at_line_start:
+            d = _DIRECTIVE.match(text, pos)
+            if d:
+                body = d.group(1)
+                hash_pos = text.index("#", pos)
+                append(Token(DIRECTIVE, body, body, loc_at(hash_pos)))
+                for piece in re.finditer(r"\\\r?\n", body):  # spliced lines still count
+                    line += 1
+                    line_start = d.start(1) + piece.end()
+                pos = d.end()
+                at_line_start = False
+                continue
+        m = match(text, pos)
+        if m is None:
+            ch = text[pos]
+            name = _NAMES.get(ch)
+            if ch == '"':
+                raise CompileError("missing closing '\"' of the string", loc_at(pos))
+            if ch == "'":
+                raise CompileError("character constant must be one character in apostrophes, e.g. 'A'",
+                                   loc_at(pos))
+            detail = f" (U+{ord(ch):04X} {name}); write '{_HINTS[ch]}'" if name else ""
+            raise CompileError(f"unexpected character '{ch}'{detail}", loc_at(pos))
+        kind = m.lastgroup
+        start, end = m.start(), m.end()
+        if kind == "ws":
+            splices = m.group().count("\n")
+            if splices:
+                line += splices
+                line_start = m.group().rfind("\n") + start + 1
+        elif kind == "nl":
+            append(Token(NEWLINE, "\n", None, loc_at(start)))
+            line += 1
+            line_start = end
+            at_line_start = True
+        elif kind == "lc":
+            pass
+        elif kind == "bc":
+            close = text.find("*/", end)
+            if close < 0:
+                raise CompileError("unterminated comment: '/*' without '*/'", loc_at(start))
+            inner = text.find("/*", end, close)
+            if inner >= 0:
+                raise CompileError("nested comments are not allowed ('/*' inside a comment)", loc_at(inner))
+            newlines = text.count("\n", start, close)
+            if newlines:  # a comment over several lines ends the statement on its first line
+                append(Token(NEWLINE, "\n", None, loc_at(start)))
+                line += newlines
+                line_start = text.rfind("\n", start, close) + 1
+                at_line_start = False
+            end = close + 2
+        elif kind == "ident":
+            word = m.group()
+            append(Token(IDENT, word, word.upper(), loc_at(start)))
+            at_line_start = False
+        elif kind == "op":
+            append(Token(OP, m.group(), m.group(), loc_at(start)))
+            at_line_start = False
+        elif kind == "str":
+            append(Token(STRING, m.group(), m.group()[1:-1], loc_at(start)))
+            at_line_start = False
+        elif kind == "chr":
+            append(Token(INT, m.group(), ord(m.group()[1]), loc_at(start)))
+            at_line_start = False
+        else:  # numbers
+            word = m.group()
+            if end < n and _BAD_NUMBER_TAIL.match(text, end):
+                tail = re.match(r"[A-Za-z0-9_]*", text[end:]).group()
+                raise CompileError(f"invalid number '{word}{tail}'", loc_at(start))
+            append(_number(kind, word, loc_at(start), warnings))
+            at_line_start = False
+        pos = end
+    append(Token(NEWLINE, "\n", None, loc_at(pos)))
+    append(Token(EOF, "", None, loc_at(pos)))
+    return tokens
+
+
+def _number(kind: str, word: str, loc: Location, warnings: list[Diagnostic] | None) -> Token:
+    if kind == "float":
+        return Token(FLOAT, word, float(word), loc)
+    if kind == "hex":
+        value = int(word, 16)
+    elif len(word) > 1 and word[0] == "0":
+        # DG 6413: a leading 0 makes an octal constant (0100 = 64).
+        bad = next((c for c in word if c in "89"), None)
+        if bad:
+            raise CompileError(f"invalid digit '{bad}' in octal constant '{word}' (a leading 0 means octal)",
+                               loc)
+        value = int(word, 8)
+        if warnings is not None:
+            warnings.append(Diagnostic("warning", f"'{word}' is an octal constant (= {value}) because it "
+                                       "starts with 0", loc))
+    else:
+        value = int(word)
+    if value > 0xFFFFFFFF:
+        raise CompileError(f"constant '{word}' does not fit in 32 bits", loc)
+    if value > 0x7FFFFFFF:  # 0xFFFFFFFF is -1, as on the controller's 32-bit registers
+        value -= 1 << 32
+    return Token(INT, word, value, loc)

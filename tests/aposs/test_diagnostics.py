@@ -1,0 +1,94 @@
+"""Broken programs give one precise diagnostic at the right line:col, never a traceback (issue 3)."""
+
+import pytest
+
+from .helpers import compile_text, messages
+
+CASES = [
+    # (source, "line:col", message fragment)
+    ("x = 1\nGOTO nowhere\n", "2:1", "label 'nowhere' is not defined"),
+    ("a:\nx = 1\na:\n", "3:1", "label 'a' is defined twice"),
+    ("GOSUB missing\n", "1:1", "GOSUB target 'missing' is not a SUBPROG"),
+    ("ON ERROR GOSUB handler\n", "1:1", "GOSUB target 'handler' is not a SUBPROG"),
+    ("x = 1\nDIM a[10]\n", "2:1", "DIM must come before all other statements"),
+    ("DIM a[2]\n#pragma NOIMPLICIT\ny = 1\n", "3:1", "'y' is not declared"),
+    ("x = 1\n#pragma NOIMPLICIT\n", "2:1", "#pragma must stand directly after the DIM statement"),
+    ("POSA\n", "1:1", "POSA needs more arguments (syntax: POSA p)"),
+    ("POSA a + 5\n", "1:8", "must be in parentheses"),
+    ("POSA 1 2\n", "1:8", "unexpected '2' after POSA"),
+    ("x = f(1)\nlong f(long a)\n{\nreturn(a)\n}\n", "1:5", "called before it is declared"),
+    ("BREAK\n", "1:1", "BREAK outside SWITCH, WHILE or REPEAT"),
+    ("main:\nSUBMAINPROG\nSUBPROG s\nGOTO main\nRETURN\nENDPROG\n", "4:1", "jumps must stay inside"),
+    ("SUBMAINPROG\nlong f(long a)\n", "2:1", "functions cannot be defined inside SUBMAINPROG"),
+    ("SUBMAINPROG\nSUBPROG s\nx = 1\nENDPROG\n", "4:1", "ENDPROG does not belong here"),
+    ("SUBPROG s\nRETURN\n", "1:1", "SUBPROG must stand inside the SUBMAINPROG"),
+    ("IF x THEN\ny = 1\n", "1:1", "IF at prog.m:1:1 is not closed: missing ENDIF"),
+    ("IF x\ny = 1\nENDIF\n", "1:5", "IF condition must end with THEN"),
+    ("WHILE x\nENDWHILE\n", "1:8", "WHILE condition must end with DO"),
+    ("IF x THEN\nELSE IF y THEN\nENDIF\nENDIF\n", "2:6", "write ELSEIF as one word"),
+    ("x = 1\nENDWHILE\n", "2:1", "ENDWHILE without WHILE"),
+    ("STAT = 5\n", "1:1", "'STAT' is a command name and cannot be used as a variable"),
+    ("DIM index[5]\n", "1:5", "'index' is a command name"),
+    ("FOO 1 2\n", "1:1", "unknown command 'FOO'"),
+    ("x = POSA 5\n", "1:5", "'POSA' does not return a value"),
+    ("DIM a[10]\nx = a\n", "2:5", "'a' is an array; give an element"),
+    ("DIM a[10]\nx = a[1][2]\n", "2:5", "'a' has one dimension"),
+    ("x = b[1]\n", "1:5", "array 'b' is not declared"),
+    ("double d\nx = d mod 2\n", "2:7", "operator 'mod' needs LONG operands"),
+    ("x = 1 % 0\n", "1:7", "division by zero"),
+    ("SWITCH x\nCASE 1:\nCASE 1:\nENDSWITCH\n", "3:6", "CASE 1 appears twice"),
+    ("SWITCH x\nCASE y:\nENDSWITCH\n", "2:6", "CASE needs a constant"),
+    ("long f(long a);\nx = 1\n", "1:1", "declared but never defined"),
+    ("long f(long a)\n{\nreturn(a)\n}\nx = f(1, 2)\n", "5:5", "takes 1 argument(s), 2 given"),
+    ("long a\nlong a\n", "2:6", "'a' is already declared"),
+    ("a = 1\nlong a\n", "2:6", "'a' is used before its declaration"),
+    ("long a = 5\n", "1:8", "declarations cannot give a value"),
+    ("NOWAIT MAYBE\n", "1:8", "NOWAIT expects ON or OFF here"),
+    ('LINKGPAR 1900 name 0 100 0\n', "1:15", "expects a text in quotes"),
+    ("SETCURVE 5\n", "1:10", "expected the name of an array"),
+    ("ON FOO GOSUB x\n", "1:4", "unknown interrupt"),
+    ("x = (1 + 2\n", "1:11", "expected ')' to close '('"),
+    ("PRINT \"a\" \"b\"\n", "1:11", "unexpected text"),
+    ("x = 7.b9\n", "1:6", ".b number 9 is outside 1..4"),
+    ("#include \"nothere.m\"\n", "1:1", "cannot find include file 'nothere.m'"),
+    ("SUBMAINPROG\nSUBPROG a\nRETURN\nSUBPROG a\nRETURN\nENDPROG\n", "4:1", "SUBPROG 'a' is defined twice"),
+    ("x = CHR(65)\n", "1:5", "CHR(n) is only allowed as a PRINT item"),
+    ("LOOP 3 nolabel\n", "1:1", "label 'nolabel' is not defined"),
+    ("MOTOR\n", "1:1", "unknown command 'MOTOR'"),
+    ("x = 1 +\n", "1:8", "expected a value, found end of line"),
+    ("a[] = b[]\n", "1:1", "array 'a' is not declared"),
+]
+
+
+@pytest.mark.parametrize("source, where, fragment", CASES, ids=[c[2][:40] for c in CASES])
+def test_broken_program_gives_precise_error(source, where, fragment):
+    errors = messages(source)
+    assert errors, f"no error for {source!r}"
+    first = errors[0]
+    assert first.startswith(where + ":"), errors
+    assert fragment in first, errors
+
+
+def test_error_inside_include_file_points_into_it(tmp_path):
+    (tmp_path / "inc.m").write_text("// header\n\n   POSA\n")
+    main = tmp_path / "main.m"
+    main.write_text('DIM a[1]\n#include "inc.m"\n')
+    result = compile_text(main.read_text(), str(main))
+    d = result.errors[0]
+    assert (d.loc.file.endswith("inc.m"), d.loc.line, d.loc.col) == (True, 3, 4)
+
+
+def test_error_from_macro_points_at_use_and_names_macro():
+    result = compile_text("#define MOVE POSA\nx = 1\n   MOVE\n")
+    d = result.errors[0]
+    assert (d.loc.line, d.loc.col) == (3, 4)
+    assert "MOVE" in d.format()
+
+
+def test_several_independent_errors_are_all_reported():
+    result = compile_text("GOTO a\nGOTO b\nGOSUB c\n")
+    assert [d.loc.line for d in result.errors] == [1, 2, 3]
+
+
+def test_never_assigned_variable_warns():
+    assert messages("PRINT speed\n", "warning") == ["1:7: 'speed' is never assigned; it always reads 0"]
