@@ -92,3 +92,61 @@ def test_several_independent_errors_are_all_reported():
 
 def test_never_assigned_variable_warns():
     assert messages("PRINT speed\n", "warning") == ["1:7: 'speed' is never assigned; it always reads 0"]
+
+
+REVIEW_CASES = [
+    ("double d\nd = 1e999\n", "2:5", "is too large"),
+    ("double d\nd = 1e300 * 1e300\n", "2:11", "overflows the DOUBLE range"),
+    ("SET KPRO 150\n", "1:5", "'KPRO' is not a parameter name"),
+    ("x = 4000000000\n", "1:5", "outside the LONG range"),
+    ("x = 1\nIF 1 THEN\nDIM a[5]\nENDIF\n", "3:1", "DIM must come before all other statements"),
+    ("x = then\n", "1:5", "'then' is a keyword"),
+    ("long f(long vel)\n{\nreturn(vel)\n}\n", "1:13", "'vel' is a command name"),
+    ("long f()\n{\nreturn(g())\n}\nlong g()\n{\nreturn(1)\n}\n", "3:8", "called before it is declared"),
+    ("ON INT GOSUB h\n", "1:8", "ON INT needs an input number"),
+    ("double b[3]\nlong f(long[] a)\n{\nreturn(a[1])\n}\nx = f(b)\n", "6:7", "is a DOUBLE array"),
+    ("ON COMBIT 40 GOSUB h\nSUBMAINPROG\nSUBPROG h\nRETURN\nENDPROG\n", "1:11", "ON COMBIT needs a bit number"),
+    ("a = 1\nx = a.33\n", "2:7", "bit number 33 is outside 1..32"),
+    ("l:\nLOOP -1 l\n", "2:6", "LOOP needs a count of 0 or more"),
+    ("x = 4 / 2\n", "1:7", "APOSS divides with '%'"),
+    ("x = 1\nLOOP 2 later\nlater:\n", "2:1", "label 'later' must come before the LOOP"),
+]
+
+
+@pytest.mark.parametrize("source, where, fragment", REVIEW_CASES, ids=[c[2][:40] for c in REVIEW_CASES])
+def test_review_findings_give_precise_errors(source, where, fragment):
+    errors = messages(source)
+    assert errors and errors[0].startswith(where + ":") and fragment in errors[0], errors
+
+
+@pytest.mark.parametrize("source", [
+    "ON DELETE +APOS SETOUT 1\n",                                       # C:2603
+    "n = 3\nv = 7\nx = v.n\nv.n = 0\n",                                 # DG 6734: expr1.expr2
+    "OUT X59/3 1\n",                                                    # CR 3152-3155
+    "DIM t[10]\nTESTSETDEST DYNMEM\n",                                  # DG 7120
+    "#define A 3\n#if A > 2 AND A < 5\nx = 1\n#endif\n",
+    "x = -2147483648\n",
+    "x = 3\ns = 1\nOUT x (s)\n",
+    "ON INT 2*256+1 GOSUB h\nSUBMAINPROG\nSUBPROG h\nRETURN\nENDPROG\n",  # CAN input module*256 + io
+    "x = 1\nIF x THEN ENDIF\n",
+    "#define X 1\n#undef X /* c */\n#pragma NOIMPLICIT /* c */\n",
+    "DEFCORIGIN X(1)\n",                                                # CR 826
+    "o = 0\nd = CPOSDIFF x(1) o\n",                                     # CR 620
+])
+def test_manual_forms_compile(source):
+    result = compile_text(source)
+    assert result.ok, [d.format() for d in result.diagnostics]
+
+
+def test_double_to_long_store_warns():
+    assert messages("x = 2.5\n", "warning") == [
+        "1:1: the DOUBLE value is truncated to store it in LONG 'x'; write (long) to say so"]
+
+
+def test_element_address_is_computed_once_for_read_modify_write():
+    from motiontool.aposs.image import Op
+    image = compile_text("DIM a[10]\ni = 1\na[i++]++\n").image
+    ops = [Op(image.code[2 * k]) for k in range(len(image))]
+    # i++ happens once: exactly one store into i after its initial assignment
+    stores_to_i = [k for k, op in enumerate(ops) if op == Op.STOREG and image.code[2 * k + 1] == 0]
+    assert len(stores_to_i) == 2

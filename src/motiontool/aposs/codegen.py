@@ -6,6 +6,7 @@ arrays, and LONG variables created by their first assignment unless #pragma NOIM
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from motiontool.aposs import ast, image, semantics
@@ -82,16 +83,21 @@ class CodeGen:
 
     # --- program ------------------------------------------------------------------------------------
     def generate(self) -> image.ProgramImage:
-        pending: list[tuple[ast.Function, bool]] = []
+        pending: list[tuple[ast.Function, bool, set[str]]] = []
+        sub_snapshot: set[str] = set()
         for kind, item in self.program.order:
             if kind == "stmt":
                 self.statement(item)
             elif kind == "func":
                 self.declare_function(item)
                 if item.body is not None:
-                    pending.append((item, self.noimplicit))
+                    pending.append((item, self.noimplicit, set(self.declared_functions)))
+            elif kind == "subarea":
+                sub_snapshot = set(self.declared_functions)
+        main_declared = self.declared_functions
         self._resolve_labels()
         self.emit(Op.END)
+        self.declared_functions = sub_snapshot  # DG 6621: a function is known from its declaration on
         for i, sub in enumerate(self.program.subprograms):
             self.img.subprograms.append(image.Subprogram(sub.text, self.pc))
             self.labels, self.label_fixups, self.loop_fixups = {}, [], []
@@ -100,9 +106,11 @@ class CodeGen:
             self.mark_statement(ast.Return(sub.end, None))
             self.emit(Op.RETSUB)
             assert len(self.img.subprograms) == i + 1
-        for func, noimplicit in pending:
+        for func, noimplicit, declared in pending:
             self.noimplicit = noimplicit
+            self.declared_functions = declared
             self.function_body(func)
+        self.declared_functions = main_declared
         self._warn_label_clashes()
         return self.img
 
@@ -113,9 +121,12 @@ class CodeGen:
             self.img.loops[index][1] = self.labels.get(name, 0)
 
     def _warn_label_clashes(self) -> None:
-        for unit_stmt in ast.walk(self.program.statements):
-            if isinstance(unit_stmt, ast.Label) and unit_stmt.name in self.globals:
-                self.sink.error(f"label '{unit_stmt.text}' has the name of a variable (DG 6425)", unit_stmt.loc)
+        bodies = [self.program.statements] + [s.body for s in self.program.subprograms] + \
+            [f.body for f in self.program.functions if f.body]
+        for body in bodies:
+            for stmt in ast.walk(body):
+                if isinstance(stmt, ast.Label) and stmt.name in self.globals:
+                    self.sink.error(f"label '{stmt.text}' has the name of a variable (DG 6425)", stmt.loc)
 
     # --- names --------------------------------------------------------------------------------------
     def lookup(self, name: str) -> Symbol | None:
@@ -131,7 +142,7 @@ class CodeGen:
 
     def temp(self) -> int:
         self._temps += 1
-        return self.new_global(f"$T{self._temps}", f"$t{self._temps}", LONG, None).slot
+        return self.new_global(f"$T{self._temps}", f"$T{self._temps}", LONG, None).slot
 
     def scalar(self, name: str, text: str, loc: Location, assigning: bool) -> Symbol:
         sym = self.lookup(name)
@@ -236,6 +247,8 @@ class CodeGen:
             self.sink.add(exc.diagnostic)
         except semantics.OperatorError as exc:
             self.sink.error(str(exc), stmt.loc)
+        except RecursionError:
+            self.sink.error("expression nested too deeply", stmt.loc)
 
     def s_Pragma(self, s: ast.Pragma) -> None:
         self.noimplicit = s.value == "NOIMPLICIT"
@@ -255,11 +268,25 @@ class CodeGen:
         self.label_fixups.append((self.emit(Op.JMP), s.label))
 
     def s_Loop(self, s: ast.Loop) -> None:
+        count = fold_int(s.count)
+        if count is not None and count < 0:
+            raise CompileError("LOOP needs a count of 0 or more", s.count.loc)
+        if s.label not in self.labels and any(isinstance(x, ast.Label) and x.name == s.label
+                                              for x in ast.walk(self._unit_body(s))):
+            raise CompileError(f"LOOP jumps back: label '{s.text}' must come before the LOOP", s.loc)
         self.to_long(self.expr(s.count))
         index = len(self.img.loops)
         self.img.loops.append([self.temp(), 0])
         self.loop_fixups.append((index, s.label))
         self.emit(Op.LOOP, index)
+
+    def _unit_body(self, stmt: ast.Stmt) -> list[ast.Stmt]:
+        bodies = [self.program.statements] + [s.body for s in self.program.subprograms] + \
+            [f.body for f in self.program.functions if f.body]
+        for body in bodies:
+            if any(x is stmt for x in ast.walk(body)):
+                return body
+        return []
 
     def s_Gosub(self, s: ast.Gosub) -> None:
         self.emit(Op.GOSUB, self.subs.get(s.name, 0))
@@ -281,7 +308,8 @@ class CodeGen:
         self.emit(Op.RET)
 
     def s_Assign(self, s: ast.Assign) -> None:
-        self.store(s.target, lambda: self.expr(s.value))
+        target = self.stable(s.target) if isinstance(s.target, ast.BitSel) else s.target
+        self.store(target, lambda: self.expr(s.value))
 
     def s_ArrayCopy(self, s: ast.ArrayCopy) -> None:
         dest = self.array(s.dest, s.dest_text, s.loc)
@@ -292,9 +320,32 @@ class CodeGen:
         self.push_array(src)
         self.emit(Op.COPYA)
 
+    def stable(self, target: ast.Expr) -> ast.Expr:
+        """The same place with its indices computed once into temporaries (for read-modify-write)."""
+        if isinstance(target, ast.BitSel):
+            return ast.BitSel(target.loc, target.kind, self.stable(target.base), target.index)
+        if isinstance(target, ast.Index) and any(not isinstance(i, ast.Num) for i in target.indices):
+            fixed = []
+            for index in target.indices:
+                if isinstance(index, ast.Num):
+                    fixed.append(index)
+                    continue
+                self.to_long(self.expr(index))
+                slot = self.temp()
+                self.emit(Op.STOREG, slot)
+                fixed.append(ast.Name(index.loc, self.img.globals[slot].name.upper(), self.img.globals[slot].name))
+            return ast.Index(target.loc, target.name, target.text, fixed)
+        if isinstance(target, ast.Pseudo) and not isinstance(target.index, ast.Num):
+            self.to_long(self.expr(target.index))
+            slot = self.temp()
+            self.emit(Op.STOREG, slot)
+            name = self.img.globals[slot].name
+            return ast.Pseudo(target.loc, target.name, ast.Name(target.loc, name.upper(), name))
+        return target
+
     def s_ExprStmt(self, s: ast.ExprStmt) -> None:
         if isinstance(s.expr, ast.PostIncrement):
-            target = s.expr.target
+            target = self.stable(s.expr.target)
             self.store(target, lambda: self._incremented(target, s.expr.op))
             return
         self.expr(s.expr)
@@ -394,6 +445,14 @@ class CodeGen:
             self.patch(pc, self.pc)
 
     def s_OnInterrupt(self, s: ast.OnInterrupt) -> None:
+        value = fold_int(s.value) if s.value is not None else None
+        if value is not None:
+            problem = _interrupt_range(s.kind, value)
+            if problem:
+                raise CompileError(problem, s.value.loc)
+            if s.kind == "PERIOD" and 0 < value < 20:
+                self.sink.warning("ON PERIOD is checked every 20 ms; a shorter period cannot be kept (DG 6345)",
+                                  s.value.loc)
         for operand in (s.value, s.setout, s.toin):
             if operand is not None:
                 self.to_long(self.expr(operand))
@@ -407,7 +466,11 @@ class CodeGen:
         """Store the value that `value()` pushes into target (converted to the target's type)."""
         if isinstance(target, ast.Name):
             sym = self.scalar(target.name, target.text, target.loc, assigning=True)
-            self.convert(value(), sym.type)
+            have = value()
+            if have == DOUBLE and sym.type == LONG:
+                self.sink.warning(f"the DOUBLE value is truncated to store it in LONG '{target.text}'; write "
+                                  "(long) to say so", target.loc)
+            self.convert(have, sym.type)
             self.emit(Op.STOREL if sym.kind == "local" else Op.STOREG, sym.slot)
         elif isinstance(target, ast.Index):
             sym = self.element_address(target)
@@ -468,6 +531,8 @@ class CodeGen:
             except semantics.OperatorError as exc:
                 raise CompileError(str(exc), e.loc) from None
             else:
+                if isinstance(value, float) and not math.isfinite(value):
+                    raise CompileError("this constant expression overflows the DOUBLE range", e.loc)
                 e = ast.Num(e.loc, value)
         return getattr(self, "e_" + type(e).__name__)(e)
 
@@ -497,8 +562,9 @@ class CodeGen:
         return LONG
 
     def e_PostIncrement(self, e: ast.PostIncrement) -> str:
-        t = self.expr(e.target)  # the old value stays on the stack
-        self.store(e.target, lambda: self._incremented(e.target, e.op))
+        target = self.stable(e.target)
+        t = self.expr(target)  # the old value stays on the stack
+        self.store(target, lambda: self._incremented(target, e.op))
         return t
 
     def e_Unary(self, e: ast.Unary) -> str:
@@ -557,6 +623,12 @@ class CodeGen:
         self.img.code[2 * pc:2 * pc] = words
 
     def e_BitSel(self, e: ast.BitSel) -> str:
+        n = fold_int(e.index)
+        if n is not None:
+            try:
+                semantics.bit_get(0, e.kind, n)
+            except semantics.OperatorError as exc:
+                raise CompileError(str(exc), e.index.loc) from None
         if self.expr(e.base) != LONG:
             raise CompileError("bit selectors need a LONG value", e.loc)
         self.to_long(self.expr(e.index))
@@ -579,7 +651,11 @@ class CodeGen:
             if param.dims:
                 if not isinstance(arg, ast.Name):
                     raise CompileError(f"parameter '{param.name}' is an array: pass an array's name", arg.loc)
-                self.push_array(self.array(arg.name, arg.text, arg.loc))
+                sym = self.array(arg.name, arg.text, arg.loc)
+                if sym.type != param.type:
+                    raise CompileError(f"'{arg.text}' is a {sym.type.upper()} array; parameter '{param.name}' "
+                                       f"takes {param.type.upper()}[]", arg.loc)
+                self.push_array(sym)
             else:
                 self.convert(self.expr(arg), param.type)
         self.emit(Op.CALL, index)
@@ -623,6 +699,10 @@ class CodeGen:
         return cmd.returns
 
     def argument(self, spec, arg: ast.Expr) -> None:
+        if spec.kind == "param" and isinstance(arg, ast.Name) and self.lookup(arg.name) is None \
+                and arg.name not in self.assigned:
+            raise CompileError(f"'{arg.text}' is not a parameter name (error 112 on the controller); give its "
+                               "code name (KPROP) or number (3260)", arg.loc)
         if isinstance(arg, (ast.Word, ast.Str)):
             self.emit(Op.PUSHS, self.const_string(arg.word if isinstance(arg, ast.Word) else arg.value))
         elif isinstance(arg, ast.ArrayArg):
@@ -643,6 +723,21 @@ class CodeGen:
                 raise CompileError("an output argument must be a variable or an array element", arg.loc)
         else:
             self.to_long(self.expr(arg))
+
+
+def _interrupt_range(kind: str, value: int) -> str | None:
+    """Constant operands of ON … outside what the controller accepts (C:2509-3091, D:7157)."""
+    if kind == "INT" and value == 0:
+        return "ON INT needs an input number other than 0 (negative = falling edge)"
+    if kind == "COMBIT" and not (-32 <= value <= 32 and value != 0):
+        return "ON COMBIT needs a bit number -32 … 32 other than 0"
+    if kind == "STATBIT" and not (1 <= abs(value) <= 32):
+        return "ON STATBIT needs a bit number 1 … 32"
+    if kind == "CANINPUT" and value != 0:
+        return "ON CANINPUT only takes the identifier 0"
+    if kind in ("TIME", "PERIOD") and value < 0:
+        return f"ON {kind} needs a time ≥ 0 ms"
+    return None
 
 
 def _expanded_specs(cmd, count: int) -> list:

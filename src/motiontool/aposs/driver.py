@@ -67,9 +67,19 @@ def compile_source(text: str | None = None, path: Path | str | None = None, *, i
         sink.add(exc.diagnostic)
         sink.items.extend(pre.result.warnings)
         return CompileResult(None, _ordered(sink.items), files)
-    check_program(program, sink)
-    image = CodeGen(program, sink, name or Path(label).stem, debug, files).generate()
-    return CompileResult(None if sink.errors else image, _ordered(sink.items), files)
+    try:
+        check_program(program, sink)
+        image = CodeGen(program, sink, name or Path(label).stem, debug, files).generate()
+    except RecursionError:
+        sink.error("program nested too deeply", program.loc)
+        image = None
+    return CompileResult(None if sink.errors else image, _sorted(_ordered(sink.items), files), files)
+
+
+def _sorted(items: list[Diagnostic], files: list[str]) -> list[Diagnostic]:
+    """Diagnostics in file order (as the files were read), then line and column."""
+    rank = {name: i for i, name in enumerate(files)}
+    return sorted(items, key=lambda d: (rank.get(d.loc.file, len(rank)), d.loc.line, d.loc.col))
 
 
 def _ordered(items: list[Diagnostic]) -> list[Diagnostic]:

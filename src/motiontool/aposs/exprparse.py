@@ -13,7 +13,7 @@ import re
 from motiontool.aposs import ast
 from motiontool.aposs.commands import ArgSpec, Command, CommandTable
 from motiontool.aposs.diagnostics import CompileError
-from motiontool.aposs.lexer import EOF, FLOAT, IDENT, INT, NEWLINE, OP, STRING, Token
+from motiontool.aposs.lexer import EOF, FLOAT, IDENT, INT, NEWLINE, OP, STRING, TERMINAL, Token
 
 _BINARY_LEVELS: list[tuple[str, ...]] = [
     ("OR",), ("AND",), ("|",), ("^",), ("&",), ("==", "!="), ("<", "<=", ">", ">="), ("<<", ">>"),
@@ -26,6 +26,7 @@ _STOP_WORDS = {"THEN", "DO", "GOSUB", "SETOUT", "TOIN", "ELSE", "ELSEIF", "ENDIF
 
 
 class ExpressionParser:
+    _in_argument = False
     toks: list[Token]
     i: int
     commands: CommandTable
@@ -88,6 +89,9 @@ class ExpressionParser:
         if t.kind == INT:
             return ast.BitSel(dot.loc, "i", base, ast.Num(t.loc, t.value))
         m = _SELECTOR.match(t.value) if t.kind == IDENT else None
+        if not m and (t.kind == IDENT or t.is_op("(")):  # DG 6734: expr1.expr2 = bit expr2 of expr1
+            self.i -= 1
+            return ast.BitSel(dot.loc, "i", base, self._power())
         if not m:
             raise self.error("expected a bit selector after '.': a bit number (.3) or .i .b .w .l .ub .sb .uw .sw "
                              "with a number", t)
@@ -150,7 +154,13 @@ class ExpressionParser:
 
     def variable_or_call(self) -> ast.Expr:
         t = self.advance()
-        if self.tok.is_op("("):
+        known = self.commands.get(t.value)
+        if known is not None and known.kind in ("keyword", "command", "interrupt", "sysvar", "function") \
+                and t.value not in ("LONG", "DOUBLE"):
+            what = "a keyword" if known.kind == "keyword" else "a command name"
+            raise self.error(f"'{t.text}' is {what} and cannot be used as a variable", t)
+        # In a command argument `x (s)` is a variable and a parenthesised argument unless x is a function.
+        if self.tok.is_op("(") and not (self._in_argument and t.value not in self.function_names):
             self.advance()
             args: list[ast.Expr] = []
             if not self.tok.is_op(")"):
@@ -206,7 +216,7 @@ class ExpressionParser:
             self.advance()
         axis = None
         if (self.tok.is_word("X") and self.peek().is_op("(") and "X" not in self.function_names
-                and command.kind == "command"):
+                and command.kind == "command" and (not command.args or command.name.endswith("DIFF"))):
             self.advance()
             self.advance()
             axis = self.expression()  # legacy axis designator x(1) (C:620, C:826)
@@ -251,6 +261,9 @@ class ExpressionParser:
             self.advance()
             return ast.Str(t.loc, t.value)
         if kind == "array":
+            if t.is_word("DYNMEM") and command.name == "TESTSETDEST":  # DG 7120: or keyword DYNMEM
+                self.advance()
+                return ast.Word(t.loc, "DYNMEM")
             name = self.expect_ident(f"the name of an array for {command.name}")
             if self.tok.is_op("[") and self.peek().is_op("]"):
                 self.advance()
@@ -275,7 +288,16 @@ class ExpressionParser:
             raise self.error("PRINT items are parsed by the statement parser", t)
         if t.kind == STRING:
             raise self.error(f"{command.name} does not take a text here", t)
-        value = self.unary()
+        if t.kind == TERMINAL:
+            if command.name not in ("OUT", "IN"):
+                raise self.error(f"a connector pin like {t.text} is only allowed in OUT and IN", t)
+            self.advance()
+            return ast.Str(t.loc, t.value)
+        self._in_argument = True
+        try:
+            value = self.unary()
+        finally:
+            self._in_argument = False
         while self.tok.is_op("."):  # OUT 1 flags.3: a selector needs no parentheses in an argument
             value = self._selector(value, self.advance())
         return value
@@ -291,4 +313,6 @@ def describe(t: Token) -> str:
         return "end of file"
     if t.kind == STRING:
         return f"text {t.text}"
+    if t.kind == TERMINAL:
+        return f"connector pin {t.text}"
     return f"'{t.text}'"

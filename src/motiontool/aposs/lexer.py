@@ -11,8 +11,8 @@ from dataclasses import dataclass
 
 from motiontool.aposs.diagnostics import CompileError, Diagnostic, Location
 
-IDENT, INT, FLOAT, STRING, OP, NEWLINE, DIRECTIVE, EOF = (
-    "IDENT", "INT", "FLOAT", "STRING", "OP", "NEWLINE", "DIRECTIVE", "EOF")
+IDENT, INT, FLOAT, STRING, OP, NEWLINE, DIRECTIVE, EOF, TERMINAL = (
+    "IDENT", "INT", "FLOAT", "STRING", "OP", "NEWLINE", "DIRECTIVE", "EOF", "TERMINAL")
 
 
 @dataclass(slots=True)
@@ -42,6 +42,7 @@ _TOKEN = re.compile(r"""
 |(?P<lc>//[^\n]*)
 |(?P<bc>/\*)
 |(?P<float>\d+\.\d+(?:[eE][+-]?\d+)?|\d+[eE][+-]?\d+)
+|(?P<terminal>[Xx]\d+/\d+)
 |(?P<hex>0[xX][0-9A-Fa-f]+)
 |(?P<int>\d+)
 |(?P<ident>[A-Za-z_][A-Za-z0-9_]*)
@@ -98,6 +99,8 @@ def tokenize(text: str, file: str, line: int = 1, col: int = 1,
                 raise CompileError("character constant must be one character in apostrophes, e.g. 'A'",
                                    loc_at(pos))
             detail = f" (U+{ord(ch):04X} {name}); write '{_HINTS[ch]}'" if name else ""
+            if ch == "/":
+                detail = " (APOSS divides with '%')"
             raise CompileError(f"unexpected character '{ch}'{detail}", loc_at(pos))
         kind = m.lastgroup
         start, end = m.start(), m.end()
@@ -134,6 +137,9 @@ def tokenize(text: str, file: str, line: int = 1, col: int = 1,
         elif kind == "op":
             append(Token(OP, m.group(), m.group(), loc_at(start)))
             at_line_start = False
+        elif kind == "terminal":  # OUT X59/3 1: a connector pin (CR 3152-3155)
+            append(Token(TERMINAL, m.group(), m.group().upper(), loc_at(start)))
+            at_line_start = False
         elif kind == "str":
             append(Token(STRING, m.group(), m.group()[1:-1], loc_at(start)))
             at_line_start = False
@@ -145,7 +151,8 @@ def tokenize(text: str, file: str, line: int = 1, col: int = 1,
             if end < n and _BAD_NUMBER_TAIL.match(text, end):
                 tail = re.match(r"[A-Za-z0-9_]*", text[end:]).group()
                 raise CompileError(f"invalid number '{word}{tail}'", loc_at(start))
-            append(_number(kind, word, loc_at(start), warnings))
+            negated = bool(tokens) and tokens[-1].is_op("-")
+            append(_number(kind, word, loc_at(start), warnings, negated))
             at_line_start = False
         pos = end
     append(Token(NEWLINE, "\n", None, loc_at(pos)))
@@ -153,9 +160,13 @@ def tokenize(text: str, file: str, line: int = 1, col: int = 1,
     return tokens
 
 
-def _number(kind: str, word: str, loc: Location, warnings: list[Diagnostic] | None) -> Token:
+def _number(kind: str, word: str, loc: Location, warnings: list[Diagnostic] | None,
+            negated: bool = False) -> Token:
     if kind == "float":
-        return Token(FLOAT, word, float(word), loc)
+        value = float(word)
+        if value == float("inf"):
+            raise CompileError(f"DOUBLE constant '{word}' is too large", loc)
+        return Token(FLOAT, word, value, loc)
     if kind == "hex":
         value = int(word, 16)
     elif len(word) > 1 and word[0] == "0":
@@ -170,6 +181,9 @@ def _number(kind: str, word: str, loc: Location, warnings: list[Diagnostic] | No
                                        "starts with 0", loc))
     else:
         value = int(word)
+        # DG 6397: LONG is -2147483648 … 2147483647; 2147483648 only after a minus sign
+        if value > (1 << 31) or (value == (1 << 31) and not negated):
+            raise CompileError(f"constant '{word}' is outside the LONG range -2147483648 … 2147483647", loc)
     if value > 0xFFFFFFFF:
         raise CompileError(f"constant '{word}' does not fit in 32 bits", loc)
     if value > 0x7FFFFFFF:  # 0xFFFFFFFF is -1, as on the controller's 32-bit registers

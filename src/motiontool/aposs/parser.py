@@ -96,6 +96,11 @@ class Parser(ExpressionParser):
             if t.is_op("}"):
                 raise self.error("'}' without a function body")
             stmt = self.statement()
+            if isinstance(stmt, ast.Dim):
+                raise CompileError("DIM must come before all other statements (DG 6439), not inside a block or "
+                                   "function", stmt.loc)
+            if isinstance(stmt, ast.Pragma):
+                raise CompileError("#pragma must stand directly after the DIM statement (DG 6090)", stmt.loc)
             if stmt is not None:
                 body.append(stmt)
 
@@ -218,7 +223,9 @@ class Parser(ExpressionParser):
         branches: list[tuple[ast.Expr, list[ast.Stmt]]] = []
         cond = self._condition("IF", "THEN")
         first: list[ast.Stmt] = []
-        if not self.at_end_of_statement():  # C:2427: IF … THEN statement / ENDIF
+        if self.tok.is_word("ENDIF", "ELSE", "ELSEIF"):
+            pass  # IF c THEN ENDIF on one line: an empty body
+        elif not self.at_end_of_statement():  # C:2427: IF … THEN statement / ENDIF
             stmt = self.statement()
             first = [stmt] if stmt else []
         else:
@@ -311,7 +318,7 @@ class Parser(ExpressionParser):
         t = self.advance()
         if self.at_end_of_statement():
             raise self.error("LOOP needs a count and a label: LOOP n label")
-        count = self.unary()
+        count = self.expression()
         label = self.expect_ident("the label LOOP jumps back to")
         self._end_statement("LOOP")
         return ast.Loop(t.loc, count, label.value, label.text)
@@ -398,13 +405,14 @@ class Parser(ExpressionParser):
         value: ast.Expr | None = None
         if kind_tok.is_word(*_POSITION_KINDS):
             kind = self.advance().value
-            value = self.unary()
+            if not (delete and self.tok.is_word("SETOUT", "GOSUB")):  # ON DELETE +APOS SETOUT 1 (C:2603)
+                value = self._on_value(kind)
         elif delete:
             kind = "POSITION"  # ON DELETE pos GOSUB name / ON DELETE pos SETOUT n (C:2601-2628)
-            value = self.unary()
+            value = self._on_value("DELETE")
         elif kind_tok.is_word(*_VALUE_KINDS):
             kind = self.advance().value
-            value = self.unary()
+            value = self._on_value(kind)
         elif kind_tok.is_word(*_PLAIN_KINDS):
             kind = self.advance().value
         else:
@@ -427,6 +435,14 @@ class Parser(ExpressionParser):
             return ast.OnInterrupt(t.loc, kind, sign, value, None, None, out, toin, delete)
         raise self.error(f"expected GOSUB after ON {kind_tok.text}; found {describe(self.tok)}")
 
+    def _on_value(self, kind: str) -> ast.Expr:
+        if self.tok.is_word("GOSUB", "SETOUT") or self.at_end_of_statement():
+            what = {"INT": "an input number", "PERIOD": "a period in ms", "TIME": "a time in ms",
+                    "COMBIT": "a bit number", "STATBIT": "a bit number", "PARAM": "a parameter number",
+                    "CANINPUT": "an identifier (0)"}.get(kind, "a position")
+            raise self.error(f"ON {kind} needs {what} before {describe(self.tok)}")
+        return self.expression()
+
     # --- subprograms and functions -----------------------------------------------------------------------
     def _subprogram_area(self) -> list[ast.Subprogram]:
         opener = self.advance()
@@ -448,6 +464,8 @@ class Parser(ExpressionParser):
                                  f"ENDPROG; found {describe(t)}")
             self.advance()
             name = self.expect_ident("the subprogram's name")
+            if self.commands.get(name.value) is not None:
+                raise self.error(f"'{name.text}' is a command name and cannot name a subprogram", name)
             self._end_statement("SUBPROG name")
             body, end = self.block(("RETURN",), t, "RETURN")
             self.advance()
@@ -498,6 +516,8 @@ class Parser(ExpressionParser):
             self.expect_op("]", " in the array parameter type 'long[]'")
             is_array = True
         name = self.expect_ident("the parameter's name")
+        if self.commands.get(name.value) is not None:
+            raise self.error(f"'{name.text}' is a command name and cannot name a parameter", name)
         return ast.Param(t.loc, t.value.lower(), name.value, name.text, is_array)
 
 
@@ -508,7 +528,8 @@ _KEYWORD_HANDLERS = {"IF", "WHILE", "REPEAT", "SWITCH", "LOOP", "GOTO", "GOSUB",
 
 
 def parse(tokens: list[Token], commands: CommandTable | None = None, parameter_lookup=None) -> ast.Program:
+    parser = Parser(tokens, commands, parameter_lookup)
     try:
-        return Parser(tokens, commands, parameter_lookup).parse_program()
+        return parser.parse_program()
     except RecursionError:
-        raise CompileError("expression nested too deeply", tokens[0].loc) from None
+        raise CompileError("expression nested too deeply", parser.tok.loc) from None

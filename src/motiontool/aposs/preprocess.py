@@ -109,6 +109,7 @@ class Preprocessor:
 
     def _directive(self, tok: Token, name: str, conds: list[_Cond], out: list[Token], depth: int) -> None:
         body = re.sub(r"\\\r?\n", " ", tok.value)
+        plain = re.sub(r"/\*.*?\*/", " ", body.split("//")[0])  # directive arguments without comments
         m = re.match(r"\s*([A-Za-z_]\w*)?\s*(.*)$", body, re.S)
         word, rest = (m.group(1) or ""), m.group(2).strip()
         active = not conds or conds[-1].active
@@ -149,11 +150,12 @@ class Preprocessor:
         elif word == "define":
             self._define(rest, tok)
         elif word == "undef":
-            if not re.fullmatch(_NAME, rest.split("//")[0].strip()):
+            name = plain.split(None, 1)[1].strip() if len(plain.split(None, 1)) > 1 else ""
+            if not re.fullmatch(_NAME, name):
                 raise CompileError("#undef needs a macro name", tok.loc)
-            self.macros.pop(rest.split("//")[0].strip(), None)
+            self.macros.pop(name, None)
         elif word == "pragma":
-            arg = rest.split("//")[0].strip().upper()
+            arg = (plain.split(None, 1)[1] if len(plain.split(None, 1)) > 1 else "").strip().upper()
             if arg not in ("IMPLICIT", "NOIMPLICIT"):
                 raise CompileError(f"unknown pragma '{rest}' (known: IMPLICIT, NOIMPLICIT)", tok.loc)
             out.append(Token(PRAGMA, "#pragma " + arg, arg, tok.loc))
@@ -296,7 +298,8 @@ class Preprocessor:
         toks = self._replace_defined(toks)
         toks = self._expand(toks, file)
         # Names left after expansion count as 0, as in C.
-        toks = [replace(t, kind=INT, text="0", value=0) if t.kind == IDENT else t for t in toks]
+        toks = [replace(t, kind=INT, text="0", value=0)
+                if t.kind == IDENT and t.value not in ("AND", "OR", "NOT", "MOD", "RND", "EXP") else t for t in toks]
         from motiontool.aposs.constexpr import evaluate_tokens
 
         return evaluate_tokens(toks, tok.loc) != 0
