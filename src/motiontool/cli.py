@@ -42,6 +42,18 @@ def _cmd_compile(args: argparse.Namespace) -> int:
                         out=sys.stdout)
 
 
+def _cmd_run(args: argparse.Namespace) -> int:
+    from motiontool.headless import RunOptions, run_program
+
+    options = RunOptions(seconds=args.seconds, settings=args.set, inputs=args.input, include_dirs=args.include,
+                         trace=args.trace, signals=[s for s in args.signals.split(",") if s.strip()],
+                         trace_interval_ms=args.interval, record=args.record, realtime=args.realtime)
+    if args.config is not None:
+        print("motiontool run: --config needs the .zbc reader, which is not built yet", file=sys.stderr)
+        return 1
+    return run_program(args.file, options)
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="motiontool",
@@ -70,6 +82,25 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--include", "-I", action="append", type=Path, default=[], metavar="DIR")
     p.add_argument("--debug", action="store_true", help="keep what a debugger needs (statement stops)")
     p.set_defaults(func=_cmd_compile)
+
+    p = sub.add_parser("run", help="run a program on the embedded simulated controller",
+                       description="stdout: exactly the program's PRINT output; stderr: controller errors. "
+                                   "Exit 0 when the program ends or the time is up, 1 on a compile error, "
+                                   "2 on an unhandled controller error.")
+    p.add_argument("file", type=Path, metavar="FILE.m")
+    p.add_argument("--seconds", type=float, default=60.0, help="virtual time to run at most (default 60)")
+    p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                   help="set a parameter before the start, e.g. KPROP=50 or 32-60=50")
+    p.add_argument("--input", action="append", default=[], metavar="N=V@T",
+                   help="set digital input N to V at T ms (default 0)")
+    p.add_argument("--include", "-I", action="append", type=Path, default=[], metavar="DIR")
+    p.add_argument("--config", type=Path, metavar="CONF.zbc", help="load parameters and arrays first")
+    p.add_argument("--trace", type=Path, metavar="OUT.csv", help="write a trace of --signals")
+    p.add_argument("--signals", default="APOS,CPOS,TRACKERR", help="comma-separated signal names")
+    p.add_argument("--interval", type=int, default=1, metavar="MS", help="trace interval (default 1 ms)")
+    p.add_argument("--record", type=Path, metavar="OUT.csv", help="write every TESTSETP recording as CSV")
+    p.add_argument("--realtime", action="store_true", help="pace virtual time at real time")
+    p.set_defaults(func=_cmd_run)
     return parser
 
 

@@ -1,0 +1,85 @@
+"""EmbeddedLink: the simulated controller inside this process.
+
+Two ways to run (docs/decisions.md, "EmbeddedLink threading"):
+- synchronous (default for the CLI and tests): virtual time moves only when the caller asks (`advance`),
+  as fast as Python goes; fully deterministic;
+- threaded (the IDE): a kernel thread paces virtual time at real time × factor. Requests are queued to
+  that thread, so the kernel is only ever touched by one thread. A thread, not a process: the kernel's
+  tick is short and the GUI needs the same requests either way; a process would add serialisation on
+  every streamed sample for no gain at 1× real time.
+"""
+
+from __future__ import annotations
+
+import queue
+import threading
+import time
+from typing import Any
+
+from motiontool.comms.link import Link
+from motiontool.comms.protocol import LinkError, LinkEvent, Request, Response
+from motiontool.comms.service import ControllerService
+from motiontool.kernel.controller import Controller
+from motiontool.kernel.plant import PlantConfig
+
+
+class EmbeddedLink(Link):
+    kind = "embedded"
+
+    def __init__(self, plant: PlantConfig | None = None, realtime_factor: float | None = None):
+        super().__init__()
+        self.service = ControllerService(Controller(plant))
+        self.service.listeners.append(self._deliver)
+        self.realtime_factor = realtime_factor
+        self._requests: queue.Queue = queue.Queue()
+        self._stop = threading.Event()
+        self._thread: threading.Thread | None = None
+        self._event_queue: list[LinkEvent] = []
+        if realtime_factor is not None:
+            self._thread = threading.Thread(target=self._run, name="mco305-kernel", daemon=True)
+            self._thread.start()
+
+    def _deliver(self, event: LinkEvent) -> None:
+        self._publish(event)
+
+    def request(self, request: Request) -> Any:
+        if self._thread is None:
+            response = self.service.handle(request)
+        else:
+            done: queue.Queue = queue.Queue(maxsize=1)
+            self._requests.put((request, done))
+            try:
+                response = done.get(timeout=10.0)
+            except queue.Empty:
+                raise LinkError("Timeout: no reply from controller") from None
+        return _unwrap(response)
+
+    # --- kernel thread ---------------------------------------------------------------------------------
+    def _run(self) -> None:
+        start = time.monotonic()
+        ticks = 0
+        while not self._stop.is_set():
+            while True:
+                try:
+                    request, done = self._requests.get_nowait()
+                except queue.Empty:
+                    break
+                done.put(self.service.handle(request))
+            due = int((time.monotonic() - start) * 1000 * self.realtime_factor)
+            burst = min(due - ticks, 200)
+            for _ in range(burst):
+                self.service.tick()
+            ticks += burst
+            if burst < 200:
+                time.sleep(0.002)
+
+    def close(self) -> None:
+        self._stop.set()
+        if self._thread is not None:
+            self._thread.join(timeout=2.0)
+
+
+def _unwrap(response: Response) -> Any:
+    if not response.ok:
+        raise LinkError(response.error, response.error_number)
+    return response.value

@@ -1,0 +1,77 @@
+"""The Link: the one way anything (IDE, scope, CLI) talks to a controller."""
+
+from __future__ import annotations
+
+import base64
+from abc import ABC, abstractmethod
+from collections.abc import Callable
+from typing import Any
+
+from motiontool.comms.protocol import LinkEvent, Request, Status
+
+
+class Link(ABC):
+    """A connection to one controller. Requests block until answered; events arrive at subscribers."""
+
+    kind = "abstract"
+
+    def __init__(self) -> None:
+        self._subscribers: list[Callable[[LinkEvent], None]] = []
+        self._next_id = 0
+
+    # --- transport ------------------------------------------------------------------------------------
+    @abstractmethod
+    def request(self, request: Request) -> Any:
+        """Send a request and return its value; raise LinkError when the controller refuses it."""
+
+    def close(self) -> None:  # noqa: B027 - links without resources need not override
+        pass
+
+    def subscribe(self, callback: Callable[[LinkEvent], None]) -> None:
+        self._subscribers.append(callback)
+
+    def unsubscribe(self, callback: Callable[[LinkEvent], None]) -> None:
+        if callback in self._subscribers:
+            self._subscribers.remove(callback)
+
+    def _publish(self, event: LinkEvent) -> None:
+        for callback in list(self._subscribers):
+            callback(event)
+
+    def call(self, op: str, **args: Any) -> Any:
+        self._next_id += 1
+        return self.request(Request(op, args, self._next_id))
+
+    # --- convenience wrappers (the same requests, typed) ---------------------------------------------------
+    def status(self) -> Status:
+        return Status(**self.call("status"))
+
+    def read_parameter(self, key: str | int) -> int:
+        return self.call("read_parameter", key=key)
+
+    def write_parameter(self, key: str | int, value: int) -> None:
+        self.call("write_parameter", key=key, value=value)
+
+    def download(self, image_bytes: bytes, number: int | None = None, name: str = "") -> None:
+        self.call("download", image=base64.b64encode(image_bytes).decode("ascii"), number=number, name=name)
+
+    def start(self, number: int | None = None) -> None:
+        self.call("start", number=number)
+
+    def break_program(self) -> None:
+        self.call("break")
+
+    def continue_program(self) -> None:
+        self.call("continue")
+
+    def read_array(self, index: int) -> list[int]:
+        return self.call("read_array", index=index)
+
+    def write_array(self, index: int, values: list[int]) -> None:
+        self.call("write_array", index=index, values=list(values))
+
+    def set_input(self, number: int, value: int) -> None:
+        self.call("set_input", number=number, value=value)
+
+    def advance(self, ms: int) -> None:
+        self.call("advance", ms=ms)

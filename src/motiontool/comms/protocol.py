@@ -1,0 +1,98 @@
+"""The messages every link carries (docs/link-protocol.md): requests, responses and events.
+
+They are plain data (JSON-serialisable dicts) so the embedded link and the wire links (FC serial, CANopen)
+exchange exactly the same things. A request names an operation and its arguments; the controller side
+answers with a value or an error; events (PRINT output, errors, program state, streamed signals) flow the
+other way without being asked for.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+from typing import Any
+
+PROTOCOL_VERSION = 1
+
+# Operations a link understands: name → argument names (all values are JSON types).
+OPERATIONS: dict[str, tuple[str, ...]] = {
+    "identify": (),                                  # → {"product", "firmware", "protocol"}
+    "status": (),                                    # → Status
+    "read_parameter": ("key",),                      # key: "32-60" | 3260 | "KPROP" → int
+    "write_parameter": ("key", "value"),
+    "list_arrays": (),                               # → [{"index", "name", "size"}]
+    "read_array": ("index",),                        # 0-based DIM position → [int]
+    "write_array": ("index", "values"),
+    "download": ("image", "number", "name"),         # image: base64 of ProgramImage.to_bytes(); number None = temporary
+    "list_programs": (),
+    "delete_program": ("number",),
+    "start": ("number",),                            # None = the temporary program
+    "break": (),                                     # [Esc]
+    "continue": (),
+    "set_input": ("number", "value"),                # simulated controllers only
+    "schedule_input": ("number", "value", "time_ms"),
+    "stream": ("signals", "interval_ms"),            # start streaming (free-run scope); [] stops
+    "read_signals": ("signals",),                    # one-off poll (polling scope) → [values]
+    "list_recordings": (),
+    "upload_recording": ("index",),                  # → {"name", "interval_ms", "indices", "names", "samples"}
+    "error_history": (),
+    "clear_error": (),
+    "advance": ("ms",),                              # virtual time, simulated controllers only
+}
+
+
+@dataclass
+class Request:
+    op: str
+    args: dict[str, Any] = field(default_factory=dict)
+    id: int = 0
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+@dataclass
+class Response:
+    id: int
+    ok: bool
+    value: Any = None
+    error: str = ""
+    error_number: int = 0
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+@dataclass
+class Status:
+    time_ms: int
+    program_state: str          # idle | running | break | ended | error
+    program: str
+    error: int                  # pending error number, 0 = none
+    line: int | None
+    apos: int
+    cpos: int
+    axend: int
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+@dataclass
+class LinkEvent:
+    kind: str                   # "print" | "error" | "program" | "message" | "samples" | "connection"
+    time_ms: int
+    text: str = ""
+    number: int = 0
+    line: int | None = None
+    data: Any = None            # samples: {"signals": [...], "time_ms": [...], "values": [[...]]}
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+class LinkError(Exception):
+    """A request the controller refused; `number` is the controller error number when there is one."""
+
+    def __init__(self, message: str, number: int = 0):
+        super().__init__(message)
+        self.number = number

@@ -1,0 +1,190 @@
+"""The controller side of the link protocol: executes requests on a kernel Controller and turns its
+events into LinkEvents. The embedded link runs it in-process; the virtual drive runs it behind a wire."""
+
+from __future__ import annotations
+
+import base64
+from collections.abc import Callable
+from typing import Any
+
+from motiontool.aposs.image import ImageError, ProgramImage
+from motiontool.comms.protocol import OPERATIONS, PROTOCOL_VERSION, LinkEvent, Request, Response, Status
+from motiontool.kernel.controller import Controller, Event
+from motiontool.kernel.errors import ControllerError
+from motiontool.kernel.sysvars import read_sysvar, sysvar_name
+
+# Signals for streaming and traces: name → reader (user units where the manual reports them so).
+SIGNALS: dict[str, Callable[[Controller], float]] = {
+    "APOS": lambda c: c.uu(c.axis.apos),
+    "CPOS": lambda c: c.uu(c.axis.cpos),
+    "TRACKERR": lambda c: c.axis.scaling.qc_to_uu(c.axis.tracking_error),
+    "AVEL": lambda c: c.avel(),
+    "CVEL": lambda c: c.axis.scaling.velocity_uu_per_s(c.axis.profile.velocity),
+    "AXEND": lambda c: c.axis.axend(),
+    "STAT": lambda c: c.stat(),
+    "ERRNO": lambda c: c.error,
+    "SPEEDREF": lambda c: round(c.axis.reference * 1000),
+    "INPUTS": lambda c: c.io.input_word(),
+    "OUTPUTS": lambda c: c.io.output_word(),
+}
+
+
+def signal_reader(name: str) -> Callable[[Controller], float]:
+    """A signal by name: one of SIGNALS, a parameter ("32-60", "KPROP") or a SYSVAR index ("4097")."""
+    key = name.strip()
+    if key.upper() in SIGNALS:
+        return SIGNALS[key.upper()]
+    if key.isdigit() or key.lower().startswith("0x"):
+        index = int(key, 0)
+        return lambda c: read_sysvar(c, index) or 0
+    return lambda c: c.params.get(key)
+
+
+class ControllerService:
+    def __init__(self, controller: Controller | None = None):
+        self.controller = controller or Controller()
+        self.programs: dict[int, ProgramImage] = {}
+        self.temporary: ProgramImage | None = None
+        self.listeners: list[Callable[[LinkEvent], None]] = []
+        self.controller.listeners.append(self._forward)
+        self.stream_signals: list[tuple[str, Callable]] = []
+        self.stream_interval = 0
+        self._stream_buffer: list[list[float]] = []
+        self._stream_times: list[int] = []
+
+    def _forward(self, event: Event) -> None:
+        self._publish(LinkEvent(event.kind, event.time_ms, event.text, event.number, event.line))
+
+    def _publish(self, event: LinkEvent) -> None:
+        for listener in self.listeners:
+            listener(event)
+
+    # --- time ------------------------------------------------------------------------------------------
+    def tick(self) -> None:
+        self.controller.tick()
+        if self.stream_signals:
+            c = self.controller
+            if c.time_ms % self.stream_interval == 0:
+                self._stream_times.append(c.time_ms)
+                self._stream_buffer.append([read(c) for _, read in self.stream_signals])
+                if len(self._stream_times) >= max(1, 20 // self.stream_interval):  # a packet every ~20 ms
+                    self.flush_stream()
+
+    def flush_stream(self) -> None:
+        if self._stream_times:
+            data = {"signals": [n for n, _ in self.stream_signals], "time_ms": self._stream_times,
+                    "values": self._stream_buffer}
+            self._stream_times, self._stream_buffer = [], []
+            self._publish(LinkEvent("samples", self.controller.time_ms, data=data))
+
+    # --- requests ------------------------------------------------------------------------------------------
+    def handle(self, request: Request) -> Response:
+        if request.op not in OPERATIONS:
+            return Response(request.id, False, error=f"unknown operation '{request.op}'")
+        try:
+            value = getattr(self, "op_" + request.op)(**request.args)
+            return Response(request.id, True, value)
+        except ControllerError as exc:
+            return Response(request.id, False, error=str(exc), error_number=exc.number)
+        except (ValueError, KeyError, TypeError, IndexError, RuntimeError, ImageError) as exc:
+            return Response(request.id, False, error=str(exc))
+
+    def op_identify(self) -> dict:
+        from motiontool import __version__
+
+        return {"product": "MCO 305 (simulated)", "firmware": f"motiontool {__version__}",
+                "protocol": PROTOCOL_VERSION}
+
+    def op_status(self) -> dict:
+        c = self.controller
+        image = getattr(c, "image", None)
+        return Status(c.time_ms, c.program_state, image.name if image else "", c.error,
+                      c.vm.line if c.vm else None, c.uu(c.axis.apos), c.uu(c.axis.cpos), c.axis.axend()).to_dict()
+
+    def op_read_parameter(self, key) -> int:
+        return self.controller.params.get(key)
+
+    def op_write_parameter(self, key, value) -> None:
+        self.controller.params.set(key, int(value), source="link")
+
+    def op_list_arrays(self) -> list[dict]:
+        return [{"index": i, "name": a.name, "size": len(a)} for i, a in enumerate(self.controller.arrays.arrays)]
+
+    def op_read_array(self, index) -> list:
+        return list(self.controller.arrays.arrays[index].data)
+
+    def op_write_array(self, index, values) -> None:
+        array = self.controller.arrays.arrays[index]
+        if len(values) > len(array):
+            raise ControllerError(171, f"{len(values)} values for {array.name}[{len(array)}]")
+        array.data[:len(values)] = [int(v) for v in values]
+
+    def op_download(self, image, number=None, name="") -> None:
+        program = ProgramImage.from_bytes(base64.b64decode(image))
+        if name:
+            program.name = name
+        if number is None:
+            self.temporary = program
+        else:
+            if not 0 <= number <= 90:
+                raise ValueError(f"program number {number} outside 0..90")
+            self.programs[number] = program
+
+    def op_list_programs(self) -> list[dict]:
+        return [{"number": n, "name": p.name} for n, p in sorted(self.programs.items())]
+
+    def op_delete_program(self, number) -> None:
+        self.programs.pop(number, None)
+
+    def op_start(self, number=None) -> None:
+        program = self.temporary if number is None else self.programs.get(number)
+        if program is None:
+            raise ValueError("no program downloaded" if number is None else f"no program {number}")
+        c = self.controller
+        if c.program_state == "running":
+            raise RuntimeError("the controller is executing a program")
+        c.load(program)
+        c.start()
+
+    def op_break(self) -> None:
+        self.controller.break_program()
+
+    def op_continue(self) -> None:
+        self.controller.continue_program()
+
+    def op_set_input(self, number, value) -> None:
+        self.controller.io.inputs[int(number)] = 1 if value else 0
+
+    def op_schedule_input(self, number, value, time_ms) -> None:
+        self.controller.io.schedule(int(time_ms), int(number), int(value))
+
+    def op_stream(self, signals, interval_ms=1) -> None:
+        self.flush_stream()
+        self.stream_signals = [(name, signal_reader(name)) for name in signals]
+        self.stream_interval = max(1, int(interval_ms))
+
+    def op_read_signals(self, signals) -> list:
+        c = self.controller
+        return [signal_reader(name)(c) for name in signals]
+
+    def op_list_recordings(self) -> list[dict]:
+        return [{"index": i, "name": r.name, "samples": len(r.samples), "indices": r.indices}
+                for i, r in enumerate(self.controller.recorder.recordings)]
+
+    def op_upload_recording(self, index) -> dict:
+        r = self.controller.recorder.recordings[index]
+        return {"name": r.name, "interval_ms": r.interval_ms, "start_ms": r.start_ms, "indices": r.indices,
+                "names": [sysvar_name(i) for i in r.indices], "samples": [list(s) for s in r.samples]}
+
+    def op_error_history(self) -> list[dict]:
+        return [vars(e).copy() for e in self.controller.error_history]
+
+    def op_clear_error(self) -> None:
+        self.controller.clear_error()
+
+    def op_advance(self, ms) -> None:
+        for _ in range(int(ms)):
+            self.tick()
+
+    def state(self) -> Any:
+        return self.controller

@@ -1,0 +1,245 @@
+"""The axis: profile generator → position controller → drive/motor plant → encoder → monitoring.
+
+Positions inside are quad counts (qc) in the axis frame (raw encoder count minus the origin); the program
+sees user units through units.Scaling. The position law is ours (kernel-spec p.1, docs/plant.md):
+every TIMER ms  e = CPOS − APOS,  ref = BANDWIDTH/1000 · (KPROP/1000 · e + I) + FFVEL/1000 · v_cmd
+− KDER/1000 · v_act + FFACC/1000 · a_cmd · 1 ms,  I = KINT/1e6 · Σe limited to ±KILIM/1000 · VELMAX,
+clipped to the drive's speed limit. With FFVEL = KDER the velocity terms are a D term on the error
+(DG 8736: "FFVEL must equal the D factor to get the typical D damping").
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from motiontool.kernel.errors import ControllerError
+from motiontool.kernel.plant import Plant, PlantConfig
+from motiontool.kernel.profile import Limits, ProfileGenerator
+from motiontool.kernel.units import Scaling
+
+IDLE, POSITIONING, SPEED, STOPPING, HOMING = "idle", "positioning", "speed", "stopping", "homing"
+
+
+@dataclass
+class Gains:
+    kprop: float = 30.0
+    kder: float = 0.0
+    kint: float = 0.0
+    kilim: float = 1000.0
+    bandwidth: float = 1000.0
+    ffvel: float = 0.0
+    ffacc: float = 0.0
+    timer: int = 1
+    poserr: int = 20000
+    poserrtime: int = 0
+    regwmax: int = 0
+    regwmin: int = 0
+
+
+class Axis:
+    def __init__(self, plant: PlantConfig | None = None):
+        self.plant = Plant(plant or PlantConfig())
+        self.scaling = Scaling()
+        self.gains = Gains()
+        self.origin = 0                   # raw qc that is axis position 0 (DEFORIGIN, HOME)
+        self.profile = ProfileGenerator(0.0)
+        self.control_on = True            # 33-81 power-up state 1 = motor on
+        self.mode = IDLE
+        self.stopped_motion: tuple | None = None  # what MOTOR STOP / an error interrupted (for CONTINUE)
+        self.motor_stop_state = False     # AXEND bit 3
+        self.ready_again = False          # AXEND bit 7
+        self.posfloat = False
+        self.open_loop_reference = 0.0    # OUTAN with MOTOR OFF
+        self.integral = 0.0
+        self.reference = 0.0
+        self._tick = 0
+        self._poserr_count = 0
+        self.apos = math.floor(self.plant.position)
+        self.target_window: tuple[int, int, int] = (0, 1, 0)  # TESTTIM, TESTVAL, TESTWIN
+        self._window_history: list[int] = []
+        self.homing = None                # homing.Homing while HOME / INDEX runs
+        self.limit_offset = 0             # DEFORIGIN shifts the software limits with the origin (DG 10158)
+
+    # --- readouts (axis frame, qc) ------------------------------------------------------------------
+    @property
+    def cpos(self) -> float:
+        return self.profile.position
+
+    @property
+    def tracking_error(self) -> float:
+        return self.profile.position - self.apos
+
+    @property
+    def raw(self) -> int:
+        return math.floor(self.plant.position)
+
+    @property
+    def moving(self) -> bool:
+        return self.mode != IDLE or abs(self.plant.velocity) > 1e-3
+
+    # --- one control tick -----------------------------------------------------------------------------
+    def tick(self) -> None:
+        pg = self.profile
+        if self.control_on:
+            if pg.mode != "idle":
+                pg.step()
+            if self.homing is not None:
+                self.homing.tick(self)
+            g = self.gains
+            self._tick += 1
+            if self._tick >= g.timer:
+                self._tick = 0
+                self.reference = self._control(pg)
+        else:
+            self.reference = self.open_loop_reference
+        self.plant.step(self.reference, self.scaling.vmax)
+        self.apos = math.floor(self.plant.position) - self.origin
+        if self.mode in (POSITIONING, STOPPING) and pg.done:
+            if self.mode == STOPPING:
+                self.motor_stop_state = self.stopped_motion is not None
+            self.mode = IDLE
+        if self.control_on:
+            self._monitor()
+
+    def _control(self, pg: ProfileGenerator) -> float:
+        g = self.gains
+        e = pg.position - self.apos
+        if g.regwmin or g.regwmax:  # control window (DG 8855-8887): POSFLOAT inside REGWMIN at standstill
+            if self.posfloat and abs(e) > g.regwmax:
+                self.posfloat = False
+            elif not self.posfloat and pg.mode == "idle" and abs(e) <= g.regwmin:
+                self.posfloat = True
+            if self.posfloat:
+                return 0.0
+        vmax = self.scaling.vmax
+        integral_term = 0.0
+        if g.kint and g.kilim:
+            self.integral += e
+            integral_term = g.kint * self.integral / 1e6
+            limit = g.kilim / 1000.0 * vmax
+            if abs(integral_term) > limit:
+                integral_term = math.copysign(limit, integral_term)
+                self.integral = integral_term * 1e6 / g.kint
+        ref = g.bandwidth / 1000.0 * (g.kprop / 1000.0 * e + integral_term)
+        if g.ffvel:
+            ref += g.ffvel / 1000.0 * pg.velocity
+        if g.kder:
+            ref -= g.kder / 1000.0 * self.plant.velocity
+        if g.ffacc:
+            ref += g.ffacc / 1000.0 * pg.acceleration
+        return ref
+
+    def _monitor(self) -> None:
+        g = self.gains
+        if abs(self.profile.position - self.apos) > g.poserr:
+            if g.poserrtime <= 0:
+                raise ControllerError(108, f"tracking error {self.profile.position - self.apos:.0f} qc > POSERR "
+                                           f"{g.poserr}")
+            self._poserr_count += 1  # DG 8913-8933: checked every 20 ms; here every tick, scaled
+            if self._poserr_count > g.poserrtime:
+                raise ControllerError(108, f"tracking error above POSERR for {g.poserrtime} ms")
+        else:
+            self._poserr_count = 0
+
+    # --- motion commands (targets in the axis frame, qc) -----------------------------------------------
+    def limits(self, vel: float, acc: float, dec: float, ramp_type: int, jerk: tuple) -> Limits:
+        return Limits(max(vel, 1e-9), max(acc, 1e-12), max(dec, 1e-12), ramp_type, jerk)
+
+    def move_to(self, target: float, limits: Limits) -> None:
+        self._start()
+        self.profile.move_to(float(target), limits)
+        self.mode = POSITIONING
+        self.last_motion = ("position", float(target), limits)
+
+    def run_at(self, velocity: float, limits: Limits) -> None:
+        self._start()
+        self.profile.run_at(velocity, limits)
+        self.mode = SPEED
+        self.last_motion = ("speed", velocity, limits)
+
+    def stop(self, limits: Limits, remember: bool = True) -> None:
+        """MOTOR STOP / CSTOP / Esc: brake to standstill; CONTINUE can resume the interrupted motion."""
+        if remember and self.mode in (POSITIONING, SPEED):
+            self.stopped_motion = self.last_motion
+        if self.mode != IDLE or not self.profile.done:
+            self.profile.stop(limits)
+            self.mode = STOPPING
+        self.homing = None
+
+    def hold(self) -> None:
+        """Stand still where the motor is (MOTOR ON, ERRCLR): CPOS := APOS, no tracking error."""
+        self.profile.hold(float(self.apos))
+        self.mode = IDLE
+        self.integral = 0.0
+        self.homing = None
+
+    def motor_off(self) -> None:
+        self.control_on = False
+        self.profile.hold(float(self.apos))
+        self.mode = IDLE
+        self.homing = None
+        self.open_loop_reference = 0.0
+
+    def motor_on(self) -> None:
+        self.control_on = True
+        self.hold()
+        self.ready_again = True
+
+    def _start(self) -> None:
+        self.motor_stop_state = False
+        self.posfloat = False
+
+    # --- origins ----------------------------------------------------------------------------------------
+    def shift_origin(self, by_qc: int) -> None:
+        """Make axis position `by_qc` the new 0 (DEFORIGIN/DEFCORIGIN/HOME); the tracking error is kept."""
+        self.origin += by_qc
+        self.apos -= by_qc
+        if self.profile.done:
+            self.profile.hold(self.profile.position - by_qc)
+        else:
+            self._shift_profile(by_qc)
+
+    def _shift_profile(self, by_qc: int) -> None:
+        pg = self.profile
+        pg.position -= by_qc
+        if pg.target is not None:
+            pg.target -= by_qc
+
+    def index_period(self) -> int:
+        """Encoder index pulses: one per revolution, 4 × 32-01 ENCODER qc, unless the plant says otherwise."""
+        return self.plant.config.index_period_qc or 4 * self.scaling.encoder_ppr
+
+    # --- status -------------------------------------------------------------------------------------------
+    def position_reached(self) -> bool:
+        """DG 10295-10318: TESTWIN 0 → CPOS at the target; else APOS inside ±TESTWIN and slower than TESTVAL."""
+        if self.mode != IDLE or not self.profile.done:
+            return False
+        testtim, testval, testwin = self.target_window
+        if testwin <= 0:
+            return True
+        if abs(self.profile.position - self.apos) > testwin:
+            return False
+        history = self._window_history
+        history.append(self.apos)
+        if len(history) > testtim + 1:
+            del history[0]
+        return testtim <= 0 or (len(history) > testtim and abs(history[-1] - history[0]) < testval)
+
+    def axend(self) -> int:
+        """CR 311-345: 1 reached, 2 positioning, 4 speed mode, 8 MOTOR STOP state, 64 control off, 128 ready."""
+        bits = 0
+        if self.mode == IDLE and not self.motor_stop_state:
+            bits |= 1
+        if self.mode == POSITIONING or (self.motor_stop_state and self.stopped_motion
+                                        and self.stopped_motion[0] == "position"):
+            bits |= 2
+        if self.mode == SPEED:
+            bits |= 4
+        if self.motor_stop_state:
+            bits |= 8 | 1 | 64
+        if not self.control_on:
+            bits |= 64
+        if self.ready_again:
+            bits |= 128
+        return bits

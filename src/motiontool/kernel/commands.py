@@ -1,0 +1,470 @@
+"""What each APOSS command does on the simulated controller: name → fn(controller, vm, args).
+
+A function returns the command's value, None, or a Wait the program blocks on. Positions and velocities
+the program gives are user units and VELRES fractions (spec a); the axis works in qc.
+"""
+
+from __future__ import annotations
+
+from motiontool.kernel import io as iomod
+from motiontool.kernel.errors import ControllerError
+from motiontool.kernel.homing import Homing
+from motiontool.kernel.sysvars import read_sysvar
+from motiontool.kernel.vm import Wait
+
+COMMANDS = {}
+
+
+def command(*names):
+    def register(fn):
+        for name in names:
+            COMMANDS[name] = fn
+        return fn
+    return register
+
+
+# --- waits ---------------------------------------------------------------------------------------------
+class Until(Wait):
+    def __init__(self, condition, value=None, resumable=True):
+        self.condition = condition
+        self.value = value
+        self.resumable = resumable
+
+    def done(self) -> bool:
+        return self.condition()
+
+
+class WaitT(Wait):
+    """WAITT restarts its time after an interrupt (DG 6301-6303)."""
+
+    def __init__(self, ctl, ms: int):
+        self.ctl, self.ms = ctl, ms
+        self.end = ctl.time_ms + ms
+
+    def done(self) -> bool:
+        return self.ctl.time_ms >= self.end
+
+    def resume(self) -> None:
+        self.end = self.ctl.time_ms + self.ms
+
+
+# --- motion helpers ------------------------------------------------------------------------------------
+def _limits(ctl, vel_value=None, for_stop=False):
+    p, a, m = ctl.params, ctl.axis, ctl.motion
+    s = a.scaling
+    vel = s.velocity(abs(vel_value if vel_value is not None else (m.vel if m.vel is not None else p["DFLTVEL"])))
+    acc = s.acceleration(m.acc if m.acc is not None else p["DFLTACC"])
+    dec = s.acceleration(m.dec if m.dec is not None else p["DFLTACC"])  # DEC never set → DFLTACC (CR 747)
+    ramp = p["RAMPTYPE"]
+    jerk = (0, 0, 0, 0)
+    if ramp in (1, 2):
+        j1 = max(1, p["JERKMIN"])
+        times = [j1] + [p[n] or j1 for n in ("JERKMIN2", "JERKMIN3", "JERKMIN4")]
+        jerk = tuple(s.amax / t for t in times)  # jerk = max. acceleration / JERKMIN (DG 9044-9086)
+    return a.limits(vel, acc, dec, ramp, jerk)
+
+
+def _motion_allowed(ctl) -> None:
+    if ctl.error:
+        raise ControllerError(105, f"error {ctl.error} is pending")
+    if ctl.params["HOME_FORCE"] == 1 and not ctl.homed:
+        raise ControllerError(106)
+    if not ctl.axis.control_on:
+        ctl.axis.motor_on()
+
+
+def _check_soft_limits(ctl, target_qc: int) -> None:
+    p = ctl.params
+    offset = ctl.axis.limit_offset
+    if p["SWNEGLIMACT"] and target_qc < p["NEGLIMIT"] - offset:
+        raise ControllerError(111, f"target {target_qc} qc below NEGLIMIT")
+    if p["SWPOSLIMACT"] and target_qc > p["POSLIMIT"] - offset:
+        raise ControllerError(111, f"target {target_qc} qc above POSLIMIT")
+
+
+def _position(ctl, vm, target_qc: int):
+    _motion_allowed(ctl)
+    _check_soft_limits(ctl, target_qc)  # CR 3451: a target beyond an active limit is not started (111)
+    axis = ctl.axis
+    axis.move_to(target_qc, _limits(ctl))
+    if vm is None or vm.effective_nowait:
+        return None
+    return Until(axis.position_reached)
+
+
+@command("POSA")
+def posa(ctl, vm, args):
+    return _position(ctl, vm, ctl.qc(args[0]))
+
+
+@command("POSR")
+def posr(ctl, vm, args):
+    # CR 3502-3520: relative to the actual position
+    return _position(ctl, vm, ctl.axis.apos + ctl.axis.scaling.uu_to_qc(args[0]))
+
+
+@command("VEL")
+def vel(ctl, vm, args):
+    ctl.motion.vel = args[0]
+
+
+@command("ACC")
+def acc(ctl, vm, args):
+    ctl.motion.acc = args[0]
+
+
+@command("DEC")
+def dec(ctl, vm, args):
+    ctl.motion.dec = args[0]
+
+
+@command("CVEL")
+def cvel(ctl, vm, args):
+    ctl.speed_value = args[0]
+    if ctl.axis.mode == "speed":  # a new CVEL in speed mode changes the running speed
+        ctl.axis.run_at(ctl.axis.scaling.velocity(args[0]), _limits(ctl, args[0]))
+
+
+@command("CSTART")
+def cstart(ctl, vm, args):
+    _motion_allowed(ctl)
+    v = getattr(ctl, "speed_value", 0)
+    ctl.axis.run_at(ctl.axis.scaling.velocity(v), _limits(ctl, v))
+
+
+@command("CSTOP")
+def cstop(ctl, vm, args):
+    ctl.axis.stop(_limits(ctl), remember=False)
+
+
+@command("MOTOR STOP")
+def motor_stop(ctl, vm, args):
+    axis = ctl.axis
+    axis.stop(_limits(ctl))
+    if vm is None or vm.effective_nowait:
+        return None
+    return Until(lambda: axis.mode == "idle")
+
+
+@command("MOTOR ON")
+def motor_on(ctl, vm, args):
+    ctl.axis.motor_on()
+
+
+@command("MOTOR OFF")
+def motor_off(ctl, vm, args):
+    ctl.axis.motor_off()
+
+
+@command("CONTINUE")
+def continue_(ctl, vm, args):
+    motion = ctl.axis.stopped_motion
+    if motion is None:
+        return None
+    ctl.axis.stopped_motion = None
+    kind, value, limits = motion
+    _motion_allowed(ctl)
+    if kind == "position":
+        ctl.axis.move_to(value, limits)
+        if vm is not None and not vm.effective_nowait:
+            return Until(ctl.axis.position_reached)
+    else:
+        ctl.axis.run_at(value, limits)
+    return None
+
+
+@command("WAITAX")
+def waitax(ctl, vm, args):
+    return Until(ctl.axis.position_reached)
+
+
+@command("HOME", "INDEX")
+def home(ctl, vm, args, index_only=False):
+    if ctl.error:
+        raise ControllerError(105, f"error {ctl.error} is pending")
+    p, axis = ctl.params, ctl.axis
+    if not axis.control_on:
+        axis.motor_on()
+    home_vel = p["HOME_VEL"]
+    if home_vel == 0:
+        raise ControllerError(107)
+    s = axis.scaling
+    ramp = s.acceleration(max(1, p["HOME_RAMP"]))  # DG 9224-9246: ramp time = VELRES / HOME_RAMP × RAMPMIN
+    limits = axis.limits(abs(s.velocity(home_vel)), ramp, ramp, 0, (0, 0, 0, 0))
+    functions = iomod.input_functions(p)
+    if not index_only and iomod.HOME_SWITCH not in functions:
+        raise ControllerError(183, "HOME needs an input with I_FUNCTION 1 or 2 (home switch)")
+
+    def switch() -> bool:
+        return ctl._function_input(iomod.HOME_SWITCH, iomod.input_functions(p))
+
+    home_type = p["HOME_TYPE"]
+    axis.homing = Homing(axis, home_type, s.velocity(home_vel), limits, 0 if index_only else p["HOME_OFFSET"],
+                         switch, index_only=index_only)
+    axis.mode = "homing"
+    # CR 1505: HOME runs to the end even with NOWAIT ON; an interrupt abandons it (CR 1498-1500).
+    return Until(lambda: axis.homing is None, resumable=False)
+
+
+COMMANDS["INDEX"] = lambda ctl, vm, args: home(ctl, vm, args, index_only=True)
+
+
+# --- origins ---------------------------------------------------------------------------------------------
+@command("DEFORIGIN")
+def deforigin(ctl, vm, args):
+    shift = ctl.axis.apos
+    ctl.axis.shift_origin(shift)
+    ctl.axis.limit_offset += shift
+    ctl.temp_origin = 0
+
+
+@command("DEFCORIGIN")
+def defcorigin(ctl, vm, args):
+    ctl.axis.shift_origin(round(ctl.axis.cpos))
+
+
+@command("SETORIGIN")
+def setorigin(ctl, vm, args):
+    ctl.temp_origin = args[0]  # absolute, relative to the real zero (CR 3984-4003)
+
+
+@command("RSTORIGIN")
+def rstorigin(ctl, vm, args):
+    ctl.temp_origin = 0
+
+
+# --- waiting and time ----------------------------------------------------------------------------------
+@command("DELAY")
+def delay(ctl, vm, args):
+    end = ctl.time_ms + max(0, args[0])
+    return Until(lambda: ctl.time_ms >= end)  # interrupts count toward the delay (C:980-989)
+
+
+@command("WAITT")
+def waitt(ctl, vm, args):
+    return WaitT(ctl, max(0, args[0]))
+
+
+@command("WAITI")
+def waiti(ctl, vm, args):
+    number = args[0]
+    state = 1 if len(args) < 2 or args[1] == "ON" else 0
+    return Until(lambda: ctl.io.inputs.get(number, 0) == state)
+
+
+@command("WAITP")
+def waitp(ctl, vm, args):
+    target = args[0]
+    start = ctl.uu(ctl.axis.apos)
+    up = target >= start
+    return Until(lambda: (ctl.uu(ctl.axis.apos) >= target) if up else (ctl.uu(ctl.axis.apos) <= target))
+
+
+@command("NOWAIT")
+def nowait(ctl, vm, args):
+    vm.nowait = args[0] == "ON"
+
+
+@command("TIME")
+def time_(ctl, vm, args):
+    return ctl.time_ms
+
+
+@command("EXIT")
+def exit_(ctl, vm, args):
+    vm.ended = True
+
+
+# --- readouts --------------------------------------------------------------------------------------------
+COMMANDS.update({
+    "APOS": lambda c, vm, a: c.uu(c.axis.apos),
+    "CPOS": lambda c, vm, a: c.uu(c.axis.cpos),
+    "TRACKERR": lambda c, vm, a: c.axis.scaling.qc_to_uu(c.axis.tracking_error),
+    "AVEL": lambda c, vm, a: c.avel(),
+    "AXEND": lambda c, vm, a: c.axis.axend(),
+    "STAT": lambda c, vm, a: c.stat(),
+    "ERRNO": lambda c, vm, a: c.error,
+    "IPOS": lambda c, vm, a: c.uu(getattr(c, "ipos_qc", 0)),
+    "APOSDIFF": lambda c, vm, a: _posdiff(c.uu(c.axis.apos), a[0]),
+    "CPOSDIFF": lambda c, vm, a: _posdiff(c.uu(c.axis.cpos), a[0]),
+    "SYNCSTAT": lambda c, vm, a: 0,
+    "SYNCERR": lambda c, vm, a: 0,
+    "MAPOS": lambda c, vm, a: 0,
+    "MAVEL": lambda c, vm, a: 0,
+})
+
+
+def _posdiff(now: int, old: int) -> int:
+    """CR 260-289: a difference beyond POS_LIMIT = 0x3FFFFFFF is an overflow of the 31-bit position."""
+    d = now - old
+    if d > 0x3FFFFFFF:
+        d -= 0x80000000
+    elif d < -0x3FFFFFFF:
+        d += 0x80000000
+    return d
+
+
+# --- I/O -------------------------------------------------------------------------------------------------
+@command("IN")
+def in_(ctl, vm, args):
+    return ctl.io.read(args[0])
+
+
+@command("INB")
+def inb(ctl, vm, args):
+    return ctl.io.read_byte(args[0])
+
+
+@command("INAD")
+def inad(ctl, vm, args):
+    return ctl.io.read_analog(args[0])
+
+
+@command("OUT")
+def out(ctl, vm, args):
+    ctl.io.write(args[0], args[1])
+
+
+@command("OUTB")
+def outb(ctl, vm, args):
+    ctl.io.write_byte(args[0], args[1])
+
+
+@command("OUTAN")
+def outan(ctl, vm, args):
+    # CR 3157-3180: with MOTOR OFF the bus reference drives the FC open loop, 0x4000 = 100 %
+    ctl.axis.open_loop_reference = args[0] / 0x4000 * ctl.axis.scaling.vmax
+
+
+@command("OUTDA")
+def outda(ctl, vm, args):
+    ctl.io.analog[args[0]] = args[1]
+
+
+# --- parameters --------------------------------------------------------------------------------------------
+@command("GET")
+def get(ctl, vm, args):
+    return ctl.params.get(args[0])
+
+
+@command("SET")
+def set_(ctl, vm, args):
+    ctl.params.set(args[0], args[1])
+
+
+@command("SET PID")
+def set_pid(ctl, vm, args):
+    ctl.pid_gains = getattr(ctl, "pid_gains", {"KPROP": 0, "KDER": 0, "KINT": 0, "KILIM": 0, "TIMER": 1})
+    ctl.pid_gains[args[0]] = args[1]
+
+
+@command("PID")
+def pid(ctl, vm, args):
+    """CR 3409-3444: u(n) = (KP·e(n) + KD·(e(n) − e(n−1)) + KI·Σe) / timer, Σe limited by KILIM."""
+    g = getattr(ctl, "pid_gains", {"KPROP": 0, "KDER": 0, "KINT": 0, "KILIM": 0, "TIMER": 1})
+    e = args[0]
+    state = getattr(ctl, "pid_state", [0, 0])
+    last, total = state
+    total += e
+    if g["KILIM"]:
+        total = max(-g["KILIM"], min(g["KILIM"], total))
+    ctl.pid_state = [e, total]
+    return int((g["KPROP"] * e + g["KDER"] * (e - last) + g["KINT"] * total) / max(1, g["TIMER"]))
+
+
+@command("LINKGPAR")
+def linkgpar(ctl, vm, args):
+    number, text, low, high, kind = args
+    if not 1900 <= number <= 1999:
+        raise ControllerError(155, f"LINKGPAR {number}: only 19-00 … 19-99 can be linked")
+    ctl.linked = getattr(ctl, "linked", {})
+    ctl.linked[number] = (text, low, high, kind)
+    value = ctl.params.values.get(number, 0)
+    ctl.params.values[number] = max(low, min(high, value))  # clamped to the linked range
+
+
+@command("SAVE AXPARS")
+def save_axpars(ctl, vm, args):
+    ctl.params.save((32, 33))
+
+
+@command("SAVE GLBPARS")
+def save_glbpars(ctl, vm, args):
+    ctl.params.save((19, 33))
+
+
+@command("SAVE USRPARS", "SAVEPROM")
+def save_usrpars(ctl, vm, args):
+    ctl.params.save((19,))
+
+
+@command("SAVE ARRAYS")
+def save_arrays(ctl, vm, args):
+    return None
+
+
+@command("DELETE ARRAYS")
+def delete_arrays(ctl, vm, args):
+    ctl.arrays.delete()
+
+
+# --- errors and interrupts --------------------------------------------------------------------------------
+@command("ERRCLR")
+def errclr(ctl, vm, args):
+    ctl.clear_error()
+
+
+@command("DISABLE")
+def disable(ctl, vm, args):
+    ctl.interrupts.disable(args[0])
+
+
+@command("ENABLE")
+def enable(ctl, vm, args):
+    ctl.interrupts.enable(args[0])
+
+
+# --- recording --------------------------------------------------------------------------------------------
+@command("TESTSETP")
+def testsetp(ctl, vm, args):
+    ctl.recorder.setp(args[0], list(args[1:4]), args[4])
+
+
+@command("TESTSETINDEX")
+def testsetindex(ctl, vm, args):
+    ctl.recorder.set_indices(list(args))
+
+
+@command("TESTSETTIME")
+def testsettime(ctl, vm, args):
+    ctl.recorder.interval_ms = max(1, args[0])
+
+
+@command("TESTSETDEST")
+def testsetdest(ctl, vm, args):
+    ctl.recorder.array = args[0]
+
+
+@command("TESTSETTYPE")
+def testsettype(ctl, vm, args):
+    ctl.recorder.cyclic = args[0] == 1
+
+
+@command("TESTSTART")
+def teststart(ctl, vm, args):
+    ctl.recorder.start(args[0], ctl.time_ms)
+
+
+@command("TESTSTOP")
+def teststop(ctl, vm, args):
+    ctl.recorder.stop(args[0])
+
+
+@command("PRINTDEV")
+def printdev(ctl, vm, args):
+    ctl.print_device = args[0]
+
+
+@command("SYSVAR")
+def sysvar(ctl, vm, args):
+    return read_sysvar(ctl, args[0]) or 0

@@ -1,0 +1,373 @@
+"""The simulated MCO 305: one control tick per millisecond of virtual time (spec §0, issue 4).
+
+Each tick: scripted inputs → machine switches → axis (profile, control, plant, encoder, monitoring) →
+recording → interrupt detection and entry → a slice of the program. Nothing here reads the wall clock,
+so the same program and inputs always give the same trace.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from motiontool.aposs.image import CommandCall, ProgramImage
+from motiontool.kernel import io as iomod
+from motiontool.kernel.arrays import ArrayMemory
+from motiontool.kernel.axis import Axis, Gains
+from motiontool.kernel.errors import AXIS_ERRORS, ControllerError, error_text
+from motiontool.kernel.interrupts import Interrupts
+from motiontool.kernel.parameters import ParameterStore
+from motiontool.kernel.plant import PlantConfig
+from motiontool.kernel.recorder import Recorder
+from motiontool.kernel.sysvars import read_sysvar
+from motiontool.kernel.units import Scaling
+from motiontool.kernel.vm import VM, ArrayRef
+
+INSTRUCTIONS_PER_TICK = 500  # program speed: machine instructions per ms (docs/decisions.md)
+ERROR_HISTORY = 50           # DG 11350
+
+
+@dataclass
+class ErrorRecord:
+    time_ms: int
+    number: int
+    text: str
+    line: int | None
+    detail: str = ""
+
+
+@dataclass
+class Event:
+    """What the controller reports to a link: kind "print" | "error" | "program" | "message"."""
+
+    kind: str
+    time_ms: int
+    text: str
+    number: int = 0
+    line: int | None = None
+
+
+@dataclass
+class MotionSettings:
+    """VEL/ACC/DEC as the program set them (None = not set: DFLTVEL/DFLTACC, CR 179-180, 3456-3458)."""
+
+    vel: int | None = None
+    acc: int | None = None
+    dec: int | None = None
+
+
+class Controller:
+    def __init__(self, plant: PlantConfig | None = None):
+        self.time_ms = 0
+        self.params = ParameterStore()
+        self.arrays = ArrayMemory()
+        self.io = iomod.IO()
+        self.axis = Axis(plant)
+        self.interrupts = Interrupts()
+        self.recorder = Recorder()
+        self.vm: VM | None = None
+        self.program_state = "idle"    # idle | running | break | ended | error
+        self.events: list[Event] = []
+        self.listeners: list[Callable[[Event], None]] = []
+        self.error: int = 0            # the pending error (ERRNO)
+        self.error_history: list[ErrorRecord] = []
+        self.motion = MotionSettings()
+        self.sysvar_memory: dict[int, int] = {}
+        self.pcd: dict[int, int] = {}
+        self.pdo: dict[int, int] = {}
+        self.apply_parameters()
+        self.params.on_change = self._parameter_changed
+        self._install_readouts()
+        from motiontool.kernel import commands
+        self._commands = commands.COMMANDS
+
+    # --- parameters → models ---------------------------------------------------------------------------
+    def apply_parameters(self) -> None:
+        p = self.params
+        self.axis.scaling = Scaling.from_params(p)
+        self.axis.gains = Gains(p["KPROP"], p["KDER"], p["KINT"], p["KILIM"], p["BANDWIDTH"], p["FFVEL"],
+                                p["FFACC"], max(1, p["TIMER"]), max(1, p["POSERR"]), p["POSERRTIME"],
+                                p["REGWMAX"], p["REGWMIN"])
+        self.axis.target_window = (p["TESTTIM"], p["TESTVAL"], p["TESTWIN"])
+
+    def _parameter_changed(self, index: int, value: int, source: str) -> None:
+        if index // 100 in (32, 33):
+            self.apply_parameters()
+        if source != "program":  # CR 2779-2810: ON PARAM fires for LCP/SDO/PDO writes, not program writes
+            self.interrupts.fire_param(index)
+
+    def _install_readouts(self) -> None:
+        s = self
+        readouts = {3450: lambda: s.uu(s.axis.apos), 3451: lambda: s.uu(s.axis.cpos),
+                    3456: lambda: s.uu(s.axis.tracking_error), 3458: lambda: s.avel(),
+                    3440: lambda: s.io.input_word(), 3441: lambda: s.io.output_word(),
+                    3461: lambda: s.axis.axend(), 3462: lambda: s.stat()}
+        self.params.readouts.update(readouts)
+
+    # --- units ------------------------------------------------------------------------------------------
+    def uu(self, qc: float) -> int:
+        """Axis qc → user units relative to the temporary zero (SETORIGIN)."""
+        return self.axis.scaling.qc_to_uu(qc) - self.temp_origin
+
+    temp_origin = 0  # SETORIGIN value in UU
+
+    def qc(self, uu: int) -> int:
+        """User units relative to the temporary zero → axis qc (truncating, DG 300-304)."""
+        return self.axis.scaling.uu_to_qc(uu + self.temp_origin)
+
+    def avel(self) -> int:
+        return self.axis.scaling.velocity_uu_per_s(self.axis.plant.velocity)
+
+    def stat(self) -> int:
+        """CR 4054-4085: byte 3 MOVING/POSFLOAT, byte 2 control off / position reached, byte 0 switches."""
+        a = self.axis
+        bits = 0
+        if a.moving:
+            bits |= 1 << 24
+        if a.posfloat:
+            bits |= 1 << 27
+        if not a.control_on:
+            bits |= (1 << 23) | (1 << 2)
+        if a.mode == "idle":
+            bits |= 1 << 18
+        functions = iomod.input_functions(self.params)
+        if any(self._function_input(f, functions) for f in (iomod.NEG_LIMIT, iomod.POS_LIMIT)):
+            bits |= 1 << 7
+        if self._function_input(iomod.HOME_SWITCH, functions):
+            bits |= 1 << 6
+        return bits
+
+    def _function_input(self, name: str, functions) -> bool:
+        entry = functions.get(name)
+        if entry is None:
+            return False
+        number, nc = entry
+        return bool(self.io.inputs.get(number, 0)) != nc
+
+    # --- programs ----------------------------------------------------------------------------------------
+    def load(self, image: ProgramImage) -> None:
+        """Download a (temporary) program: it replaces the current one and is ready to start."""
+        if self.program_state == "running":
+            raise RuntimeError("a program is running; break it first")
+        self.image = image
+        self.program_state = "idle"
+
+    def start(self) -> None:
+        self.interrupts.reset()
+        self.motion = MotionSettings()
+        self.params.saved = dict(self.params.values)
+        self.vm = None
+        self.program_state = "running"
+        try:
+            self.vm = VM(self.image, self)
+        except ControllerError as exc:
+            self._fail(exc)
+            return
+        self._emit(Event("program", self.time_ms, f"program {self.image.name} started"))
+
+    def break_program(self) -> None:
+        """[Esc]: stop the program, the axis stops with maximum deceleration (DG 2054-2062, ESCCOND)."""
+        if self.program_state != "running":
+            return
+        self.program_state = "break"
+        self._esc_stop()
+        self._emit(Event("program", self.time_ms, "program stopped by break"))
+
+    def continue_program(self) -> None:
+        if self.program_state == "break" and self.vm is not None and not self.vm.ended:
+            self.program_state = "running"
+            if self.axis.stopped_motion is not None:
+                self._commands["CONTINUE"](self, self.vm, [])
+
+    def _esc_stop(self) -> None:
+        a = self.axis
+        fast = a.limits(a.scaling.vmax, a.scaling.amax, a.scaling.amax, 0, (0, 0, 0, 0))
+        a.stop(fast)
+        if self.params["ESCCOND"] in (1, 2):
+            level = 0 if self.params["ESCCOND"] == 1 else 1
+            for n in list(self.io.outputs) or list(iomod.OUTPUTS):
+                self.io.outputs[n] = level
+
+    def _end_program(self, state: str) -> None:
+        self.program_state = state
+        self.params.restore()
+        self.apply_parameters()
+        self.interrupts.reset()
+        self.recorder.active = None
+        self._emit(Event("program", self.time_ms, f"program {state}"))
+
+    # --- time ------------------------------------------------------------------------------------------
+    def tick(self) -> None:
+        """Advance one millisecond."""
+        self.time_ms += 1
+        self.io.apply_events(self.time_ms)
+        self._machine_inputs()
+        try:
+            self.axis.tick()
+            if self.axis.homing is not None and self.axis.homing.done:
+                self._homing_finished()
+        except ControllerError as exc:
+            self.raise_error(exc)
+        if self.recorder.active is not None:
+            self.recorder.sample(self._read_sysvar_for_recording)
+        if self.program_state == "running":
+            self._run_program()
+
+    def run_for(self, ms: int, until: Callable[[], bool] | None = None) -> None:
+        for _ in range(ms):
+            self.tick()
+            if until is not None and until():
+                return
+
+    def _machine_inputs(self) -> None:
+        functions = iomod.input_functions(self.params)
+        plant = self.axis.plant
+        home = functions.get(iomod.HOME_SWITCH)
+        if home:
+            self.io.inputs[home[0]] = int(plant.home_switch() != home[1])
+        neg, pos = plant.limit_switches()
+        for name, active in ((iomod.NEG_LIMIT, neg), (iomod.POS_LIMIT, pos)):
+            entry = functions.get(name)
+            if entry and (plant.config.neg_limit_switch_qc is not None or
+                          plant.config.pos_limit_switch_qc is not None):
+                self.io.inputs[entry[0]] = int(active != entry[1])
+        for name in (iomod.NEG_LIMIT, iomod.POS_LIMIT):
+            if self._function_input(name, functions) and self.error != 125 and self.axis.control_on:
+                direction = -1 if name == iomod.NEG_LIMIT else 1
+                if self.axis.plant.velocity * direction >= 0 or self.axis.mode != "idle":
+                    self.raise_error(ControllerError(125, f"{name.replace('_', ' ')} switch"))
+
+    def _read_sysvar_for_recording(self, index: int) -> int:
+        value = read_sysvar(self, index)
+        return 0 if value is None else value
+
+    def _run_program(self) -> None:
+        vm = self.vm
+        self._serve_interrupts(vm)
+        try:
+            vm.run(INSTRUCTIONS_PER_TICK)
+        except ControllerError as exc:
+            self.raise_error(exc)
+            return
+        if vm.ended and self.program_state == "running":
+            self._end_program("ended")
+
+    def _serve_interrupts(self, vm: VM) -> None:
+        positions = None
+        if any(s.kind in ("APOS", "IPOS", "MAPOS", "MCPOS", "MIPOS") for s in self.interrupts.sources):
+            positions = {"APOS": self.uu(self.axis.apos)}
+        inputs = self.io.inputs
+        actions = self.interrupts.detect(self.time_ms, lambda n: inputs.get(n, 0), positions or {},
+                                         self.statbits(), None) if self.interrupts.sources else []
+        for out, level in actions:
+            self.io.outputs[out] = level
+        if self.error and self.interrupts.error_sub is not None and not any(
+                s.interrupt == "ERROR" for s in vm.subs):
+            vm.enter_interrupt(self.interrupts.error_sub, "ERROR")
+            return
+        if vm.in_interrupt:
+            return
+        source = self.interrupts.next_ready()
+        if source is not None:
+            source.pending = False
+            vm.enter_interrupt(source.sub, source.kind)
+
+    def interrupt_returned(self, vm: VM, kind: str) -> None:
+        """CR 2657-2660: an error handler that returns with the error still pending is called again."""
+        if kind == "ERROR" and self.error and self.interrupts.error_sub is not None:
+            vm.enter_interrupt(self.interrupts.error_sub, "ERROR")
+
+    def statbits(self) -> int:
+        st = self.stat()
+        return ((st >> 24) & 0xFF) << 16
+
+    # --- errors --------------------------------------------------------------------------------------------
+    def raise_error(self, exc: ControllerError) -> None:
+        line = self.vm.line if self.vm is not None else None
+        number = exc.number
+        self.error_history.append(ErrorRecord(self.time_ms, number, error_text(number), line, exc.detail))
+        del self.error_history[:-ERROR_HISTORY]
+        first = not self.error
+        if first:
+            self.error = number
+        self._emit(Event("error", self.time_ms, f"error {number}: {error_text(number)}", number, line))
+        if number in AXIS_ERRORS or number == 105:
+            self._error_reaction()
+        if self.program_state == "running" and self.interrupts.error_sub is None:
+            self._fail(exc, already_reported=True)
+
+    def _fail(self, exc: ControllerError, already_reported: bool = False) -> None:
+        if not already_reported:
+            line = self.vm.line if self.vm is not None else None
+            self.error = self.error or exc.number
+            self._emit(Event("error", self.time_ms, f"error {exc.number}: {error_text(exc.number)}",
+                             exc.number, line))
+            self._error_reaction()
+        self._end_program("error")
+
+    def _error_reaction(self) -> None:
+        """33-83 ERRCOND (DG 10730-10758): 0 coast, 1 coast + brake, 2/3 stop with max. deceleration."""
+        mode = self.params["ERRCOND"]
+        a = self.axis
+        if mode in (0, 1):
+            a.motor_off()
+        elif mode in (2, 3):
+            fast = a.limits(a.scaling.vmax, a.scaling.amax, a.scaling.amax, 0, (0, 0, 0, 0))
+            a.stop(fast)
+        if mode in (1, 3):
+            self._brake(True)
+
+    def _brake(self, on: bool) -> None:
+        for n, index in iomod.OUTPUT_FUNCTION_PARAMETERS.items():
+            code = self.params.values.get(index, 0)
+            if code in (5, 6):
+                self.io.outputs[n] = int(on) if code == 5 else int(not on)
+
+    def clear_error(self) -> None:
+        """ERRCLR: clears the pending error and switches position control on where the axis is."""
+        self.error = 0
+        self.axis.motor_on()
+
+    # --- host interface for the VM ------------------------------------------------------------------------
+    def command(self, vm: VM, call: CommandCall, args: list):
+        impl = self._commands.get(call.command)
+        if impl is None:
+            raise ControllerError(110, f"{call.command} is not simulated")
+        return impl(self, vm, args)
+
+    def dim_array(self, index: int, name: str, dims: list[int]) -> ArrayRef:
+        return self.arrays.dim(index, name, dims)
+
+    def print_text(self, text: str) -> None:
+        self._emit(Event("print", self.time_ms, text))
+
+    def define_interrupt(self, vm: VM, index: int, operands: list[int]) -> None:
+        info = vm.image.interrupts[index]
+        self.interrupts.define(info.kind, info.sign, info.subprogram, operands, self.time_ms, info.has_value,
+                               info.setout, info.toin, info.delete)
+
+    def read_pseudo(self, which: int, index: int) -> int:
+        if which == 0:
+            value = read_sysvar(self, index)
+            return 0 if value is None else value
+        return (self.pcd if which == 1 else self.pdo).get(index, 0)
+
+    def write_pseudo(self, which: int, index: int, value: int) -> None:
+        target = self.sysvar_memory if which == 0 else (self.pcd if which == 1 else self.pdo)
+        target[index] = value
+
+    def _homing_finished(self) -> None:
+        homing = self.axis.homing
+        self.axis.homing = None
+        if not homing.index_only:
+            self.axis.shift_origin(round(self.axis.cpos))
+            self.axis.limit_offset = 0
+            self.homed = True
+
+    homed = False
+
+    # --- events ------------------------------------------------------------------------------------------
+    def _emit(self, event: Event) -> None:
+        self.events.append(event)
+        for listener in self.listeners:
+            listener(event)

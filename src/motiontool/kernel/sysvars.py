@@ -1,0 +1,49 @@
+"""SYSVAR indices the simulator serves (docs/sysvar.md). Axis process data are 4096 + n (DG 4831-4888,
+5336); SDO-style indices are 0x01000000 + (index << 8) + subindex (CR 2039)."""
+
+from __future__ import annotations
+
+AXIS_BASE = 4096
+
+# n → (name shown by the oscilloscope as "Axis: Name [Index]", unit, reader(controller) in qc or raw units)
+AXIS_PROCESS_DATA = {
+    1: ("REG_ACTPOS", "qc", lambda c: c.axis.apos),
+    2: ("REG_COMPOS", "qc", lambda c: round(c.axis.cpos)),
+    3: ("REG_ACTVEL", "qc/ms", lambda c: round(c.axis.plant.velocity)),
+    4: ("REG_COMVEL", "qc/ms", lambda c: round(c.axis.profile.velocity)),
+    5: ("REG_SPEEDREF", "qc/ms", lambda c: round(c.axis.reference)),
+    6: ("REG_TRACKERR", "qc", lambda c: round(c.axis.tracking_error)),
+    7: ("REG_AXEND", "", lambda c: c.axis.axend()),
+    8: ("REG_STAT", "", lambda c: c.stat()),
+    10: ("VELMAXQC", "qc/s", lambda c: round(c.axis.scaling.vmax * 1000)),
+    23: ("sys_clock", "ms", lambda c: c.time_ms),
+    28: ("REG_NORMTRACKERR", "qc", lambda c: round(abs(c.axis.tracking_error))),
+}
+SDO_PROCESS_DATA = {
+    0x01250001: "REG_ACTPOS",   # SDO 0x2500 sub 1 (CR 2040)
+    0x01250002: "REG_COMPOS",
+    0x01250006: "REG_TRACKERR",
+}
+_BY_NAME = {name: n for n, (name, _, _) in AXIS_PROCESS_DATA.items()}
+
+
+def read_sysvar(controller, index: int) -> int | None:
+    """Value of SYSVAR[index], or None if the simulator does not know the index."""
+    if AXIS_BASE < index <= AXIS_BASE + 255:
+        entry = AXIS_PROCESS_DATA.get(index - AXIS_BASE)
+        return entry[2](controller) if entry else None
+    if index in SDO_PROCESS_DATA:
+        return AXIS_PROCESS_DATA[_BY_NAME[SDO_PROCESS_DATA[index]]][2](controller)
+    if index == 0x01220202:  # SDO 0x2202 sub 2: digital inputs 1-8
+        return controller.io.read_byte(0)
+    if index == 0x0122020A:  # sub 0x0A: digital outputs 1-8
+        return controller.io.output_word() & 0xFF
+    if 0x01220100 < index <= 0x01220164:  # 0x2201: user parameters 19-00 … 19-99
+        return controller.params.values.get(1900 + (index - 0x01220101), 0)
+    return controller.sysvar_memory.get(index)
+
+
+def sysvar_name(index: int) -> str:
+    if AXIS_BASE < index <= AXIS_BASE + 255 and index - AXIS_BASE in AXIS_PROCESS_DATA:
+        return AXIS_PROCESS_DATA[index - AXIS_BASE][0]
+    return SDO_PROCESS_DATA.get(index, f"SYSVAR 0x{index:X}" if index > 0xFFFF else f"SYSVAR {index}")
