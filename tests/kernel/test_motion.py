@@ -159,3 +159,10 @@ def test_continuous_program_keeps_running():
     run = start("VEL 100\nACC 100\nDEC 100\nmain:\nPOSA 20000\nPOSA 0\nGOTO main\n")
     run.advance(3000)
     assert run.state == "running"
+
+
+def test_break_and_error_clear_inputs():
+    """DG 10336-10418: I_FUNCTION 9 = break program, 7 = error clear (rising edge)."""
+    run = run_source("main:\nDELAY 10\nGOTO main\n", 1000, settings={"I_FUNCTION_4": 9}, inputs=[(4, 1, 300)])
+    assert run.state == "break"
+    assert 300 <= run.controller.time_ms <= 400

@@ -37,6 +37,10 @@ OPERATIONS: dict[str, tuple[str, ...]] = {
     "error_history": (),
     "clear_error": (),
     "advance": ("ms",),                              # virtual time, simulated controllers only
+    "set_breakpoints": ("lines",),                   # debugger: source lines of the main file (debug builds)
+    "step": (),                                      # run to the next statement and stop there
+    "read_variables": ("names",),                    # → [value]; "name" or "array[i]"
+    "write_variable": ("name", "value"),
 }
 
 

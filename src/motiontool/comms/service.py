@@ -98,8 +98,7 @@ class ControllerService:
     def op_status(self) -> dict:
         c = self.controller
         image = getattr(c, "image", None)
-        return Status(c.time_ms, c.program_state, image.name if image else "", c.error,
-                      c.vm.line if c.vm else None, c.uu(c.axis.apos), c.uu(c.axis.cpos), c.axis.axend()).to_dict()
+        return Status(c.time_ms, c.program_state, image.name if image else "", c.error, c.current_line, c.uu(c.axis.apos), c.uu(c.axis.cpos), c.axis.axend()).to_dict()
 
     def op_read_parameter(self, key) -> int:
         return self.controller.params.get(key)
@@ -185,6 +184,45 @@ class ControllerService:
     def op_advance(self, ms) -> None:
         for _ in range(int(ms)):
             self.tick()
+
+    # --- debugger -----------------------------------------------------------------------------------------
+    def op_set_breakpoints(self, lines) -> None:
+        if len(lines) > 10:  # DG 3430: at most 10 breakpoints
+            raise ValueError("at most 10 breakpoints")
+        self.controller.breakpoints = {int(n) for n in lines}
+
+    def op_step(self) -> None:
+        self.controller.continue_program(step=True)
+
+    def op_read_variables(self, names) -> list:
+        return [self._variable(name)[0][self._variable(name)[1]] for name in names]
+
+    def op_write_variable(self, name, value) -> None:
+        container, index, type_ = self._variable(name, with_type=True)
+        container[index] = float(value) if type_ == "double" else int(value)
+
+    def _variable(self, name: str, with_type: bool = False):
+        vm = self.controller.vm
+        if vm is None:
+            raise ValueError("no program is loaded")
+        text = name.strip()
+        base, _, rest = text.partition("[")
+        key = base.strip().upper()
+        if rest:
+            index = int(rest.rstrip("]").strip(), 0)
+            arrays = {a.name.upper(): a for a in vm.dims + vm.arrays}
+            if key not in arrays:
+                raise ValueError(f"no array '{base.strip()}'")
+            array = arrays[key]
+            if not 1 <= index <= len(array.data):
+                raise ControllerError(171, f"{text} outside 1..{len(array.data)}")
+            result = (array.data, index - 1, array.type)
+        else:
+            slots = {v.name.upper(): i for i, v in enumerate(vm.image.globals)}
+            if key not in slots:
+                raise ValueError(f"no variable '{text}'")
+            result = (vm.globals, slots[key], vm.image.globals[slots[key]].type)
+        return result if with_type else result[:2]
 
     def state(self) -> Any:
         return self.controller

@@ -196,7 +196,7 @@ def home(ctl, vm, args, index_only=False):
         raise ControllerError(183, "HOME needs an input with I_FUNCTION 1 or 2 (home switch)")
 
     def switch() -> bool:
-        return ctl._function_input(iomod.HOME_SWITCH, iomod.input_functions(p))
+        return ctl._function_input(iomod.HOME_SWITCH, ctl.input_functions())
 
     home_type = p["HOME_TYPE"]
     axis.homing = Homing(axis, home_type, s.velocity(home_vel), limits, 0 if index_only else p["HOME_OFFSET"],

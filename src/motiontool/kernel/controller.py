@@ -73,6 +73,9 @@ class Controller:
         self.error_history: list[ErrorRecord] = []
         self.motion = MotionSettings()
         self.sysvar_memory: dict[int, int] = {}
+        self.stopped_line: int | None = None  # the line a breakpoint or single step stopped before
+        self.breakpoints: set[int] = set()   # source lines (of the main file) where a debug build stops
+        self.single_step = False
         self.pcd: dict[int, int] = {}
         self.pdo: dict[int, int] = {}
         self.apply_parameters()
@@ -91,6 +94,7 @@ class Controller:
         self.axis.target_window = (p["TESTTIM"], p["TESTVAL"], p["TESTWIN"])
 
     def _parameter_changed(self, index: int, value: int, source: str) -> None:
+        self._functions = None
         if index // 100 in (32, 33):
             self.apply_parameters()
         if source != "program":  # CR 2779-2810: ON PARAM fires for LCP/SDO/PDO writes, not program writes
@@ -130,7 +134,7 @@ class Controller:
             bits |= (1 << 23) | (1 << 2)
         if a.mode == "idle":
             bits |= 1 << 18
-        functions = iomod.input_functions(self.params)
+        functions = self.input_functions()
         if any(self._function_input(f, functions) for f in (iomod.NEG_LIMIT, iomod.POS_LIMIT)):
             bits |= 1 << 7
         if self._function_input(iomod.HOME_SWITCH, functions):
@@ -145,6 +149,12 @@ class Controller:
         return bool(self.io.inputs.get(number, 0)) != nc
 
     # --- programs ----------------------------------------------------------------------------------------
+    @property
+    def current_line(self) -> int | None:
+        if self.program_state == "break" and self.stopped_line is not None:
+            return self.stopped_line
+        return self.vm.line if self.vm is not None else None
+
     def load(self, image: ProgramImage) -> None:
         """Download a (temporary) program: it replaces the current one and is ready to start."""
         if self.program_state == "running":
@@ -173,11 +183,27 @@ class Controller:
         self._esc_stop()
         self._emit(Event("program", self.time_ms, "program stopped by break"))
 
-    def continue_program(self) -> None:
+    def continue_program(self, step: bool = False) -> None:
+        """Continue after a break or breakpoint; with `step`, stop again before the next statement."""
         if self.program_state == "break" and self.vm is not None and not self.vm.ended:
+            self.single_step = step
             self.program_state = "running"
-            if self.axis.stopped_motion is not None:
+            self.stopped_line = None
+            if self.axis.stopped_motion is not None and not step:
                 self._commands["CONTINUE"](self, self.vm, [])
+
+    def statement_stop(self, vm: VM, line_index: int) -> bool:
+        """Debug builds: stop before a statement with a breakpoint, or the next one when single-stepping."""
+        entry = vm.image.lines[line_index]
+        if not (self.single_step or (entry.file == 0 and entry.line in self.breakpoints)):
+            return False
+        self.single_step = False
+        self.program_state = "break"
+        self.stopped_line = entry.line
+        if self.axis.mode != "idle":  # DG 3352-3354: a breakpoint stops the drive like [Esc]
+            self._esc_stop()
+        self._emit(Event("program", self.time_ms, f"stopped at line {entry.line}", line=entry.line))
+        return True
 
     def _esc_stop(self) -> None:
         a = self.axis
@@ -200,8 +226,10 @@ class Controller:
     def tick(self) -> None:
         """Advance one millisecond."""
         self.time_ms += 1
-        self.io.apply_events(self.time_ms)
-        self._machine_inputs()
+        if self.io.events:
+            self.io.apply_events(self.time_ms)
+        if self._functions is None or self._functions:
+            self._machine_inputs()
         try:
             self.axis.tick()
             if self.axis.homing is not None and self.axis.homing.done:
@@ -219,8 +247,19 @@ class Controller:
             if until is not None and until():
                 return
 
+    _functions: dict | None = None
+    _last_inputs: dict | None = None
+
+    def input_functions(self) -> dict:
+        """33-5x input functions, recomputed only when a parameter changes."""
+        if self._functions is None:
+            self._functions = iomod.input_functions(self.params)
+        return self._functions
+
     def _machine_inputs(self) -> None:
-        functions = iomod.input_functions(self.params)
+        functions = self.input_functions()
+        if not functions:
+            return
         plant = self.axis.plant
         home = functions.get(iomod.HOME_SWITCH)
         if home:
@@ -236,6 +275,17 @@ class Controller:
                 direction = -1 if name == iomod.NEG_LIMIT else 1
                 if self.axis.plant.velocity * direction >= 0 or self.axis.mode != "idle":
                     self.raise_error(ControllerError(125, f"{name.replace('_', ' ')} switch"))
+        # DG 10336-10418: error clear, break and continue inputs act on their rising edge
+        now = {name: self._function_input(name, functions)
+               for name in (iomod.ERROR_CLEAR, iomod.BREAK, iomod.CONTINUE) if name in functions}
+        last = self._last_inputs or {}
+        self._last_inputs = now
+        if now.get(iomod.ERROR_CLEAR) and not last.get(iomod.ERROR_CLEAR) and self.error:
+            self.clear_error()
+        if now.get(iomod.BREAK) and not last.get(iomod.BREAK):
+            self.break_program()
+        if now.get(iomod.CONTINUE) and not last.get(iomod.CONTINUE):
+            self.continue_program()
 
     def _read_sysvar_for_recording(self, index: int) -> int:
         value = read_sysvar(self, index)
@@ -243,7 +293,8 @@ class Controller:
 
     def _run_program(self) -> None:
         vm = self.vm
-        self._serve_interrupts(vm)
+        if self.interrupts.sources or self.error:
+            self._serve_interrupts(vm)
         try:
             vm.run(INSTRUCTIONS_PER_TICK)
         except ControllerError as exc:
@@ -253,12 +304,14 @@ class Controller:
             self._end_program("ended")
 
     def _serve_interrupts(self, vm: VM) -> None:
-        positions = None
-        if any(s.kind in ("APOS", "IPOS", "MAPOS", "MCPOS", "MIPOS") for s in self.interrupts.sources):
-            positions = {"APOS": self.uu(self.axis.apos)}
-        inputs = self.io.inputs
-        actions = self.interrupts.detect(self.time_ms, lambda n: inputs.get(n, 0), positions or {},
-                                         self.statbits(), None) if self.interrupts.sources else []
+        sources = self.interrupts.sources
+        actions = []
+        if sources:
+            kinds = {s.kind for s in sources}
+            positions = {"APOS": self.uu(self.axis.apos)} if "APOS" in kinds else {}
+            statbits = self.statbits() if "STATBIT" in kinds else 0
+            inputs = self.io.inputs
+            actions = self.interrupts.detect(self.time_ms, lambda n: inputs.get(n, 0), positions, statbits, None)
         for out, level in actions:
             self.io.outputs[out] = level
         if self.error and self.interrupts.error_sub is not None and not any(

@@ -6,6 +6,7 @@ qc = quad counts; velocities in qc per ms, accelerations in qc per ms², jerk in
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 
 @dataclass(frozen=True)
@@ -32,12 +33,12 @@ class Scaling:
         value = qc * self.posfact_n / self.posfact_z
         return int(value + 0.5) if value >= 0 else -int(-value + 0.5)
 
-    @property
+    @cached_property
     def vmax(self) -> float:
         """VELMAX in qc/ms (DG 9070-9086: 3000 rpm, 500 PPR → 100 qc/ms)."""
         return self.velmax_rpm * self.encoder_ppr * 4 / 60000.0
 
-    @property
+    @cached_property
     def amax(self) -> float:
         """Maximum acceleration VELMAX / RAMPMIN in qc/ms² (DG 8959-8973)."""
         return self.vmax / self.rampmin_ms

@@ -67,6 +67,7 @@ class Host(Protocol):
     def print_text(self, text: str) -> None: ...
     def define_interrupt(self, vm: VM, index: int, operands: list[int]) -> None: ...
     def read_pseudo(self, which: int, index: int) -> int: ...
+    def statement_stop(self, vm: VM, line_index: int) -> bool: ...
     def write_pseudo(self, which: int, index: int, value: int) -> None: ...
 
 
@@ -101,6 +102,7 @@ class VM:
     stack_used: int = 0
     print_line: list[str] = field(default_factory=list)
     instructions: int = 0
+    skip_stop: bool = False
 
     def __post_init__(self) -> None:
         img = self.image
@@ -172,7 +174,12 @@ class VM:
                     if stack.pop():
                         pc = arg
                 elif op == Op.STMT:
-                    pass
+                    if self.skip_stop:
+                        self.skip_stop = False
+                    elif self.host.statement_stop(self, arg):
+                        self.pc = pc - 1  # stop before the statement; resuming runs it
+                        self.skip_stop = True
+                        return
                 elif op == Op.CMD:
                     self.pc = pc
                     self._command(arg)
