@@ -98,7 +98,8 @@ class ControllerService:
     def op_status(self) -> dict:
         c = self.controller
         image = getattr(c, "image", None)
-        return Status(c.time_ms, c.program_state, image.name if image else "", c.error, c.current_line, c.uu(c.axis.apos), c.uu(c.axis.cpos), c.axis.axend()).to_dict()
+        return Status(c.time_ms, c.program_state, image.name if image else "", c.error, c.current_line,
+                      c.uu(c.axis.apos), c.uu(c.axis.cpos), c.axis.axend()).to_dict()
 
     def op_read_parameter(self, key) -> int:
         return self.controller.params.get(key)
