@@ -166,3 +166,43 @@ def test_break_and_error_clear_inputs():
     run = run_source("main:\nDELAY 10\nGOTO main\n", 1000, settings={"I_FUNCTION_4": 9}, inputs=[(4, 1, 300)])
     assert run.state == "break"
     assert 300 <= run.controller.time_ms <= 400
+
+
+def test_software_limit_in_speed_mode_and_198_after_clearing():
+    """DG 10213, 11498-11518, 11872-11876: in speed mode 111 comes when the actual position reaches the
+    limit; after ERRCLR a move further in the forbidden direction is error 198, the other way is free."""
+    src = """
+ON ERROR GOSUB h
+SET NEGLIMIT -30000
+SET SWNEGLIMACT 1
+ACC 100
+DEC 100
+CVEL -30
+CSTART
+DELAY 3000
+CVEL -10
+CSTART
+DELAY 100
+CVEL 10
+CSTART
+DELAY 500
+PRINT "moving back ", AVEL > 0
+SUBMAINPROG
+SUBPROG h
+  PRINT "error ", ERRNO, " at ", APOS < -30000
+  ERRCLR
+RETURN
+ENDPROG
+"""
+    run = run_source(src, 6000)
+    assert [e.number for e in run.errors] == [111, 198]
+    assert run.prints == ["error 111 at 1", "error 198 at 1", "moving back 1"]
+
+
+def test_interrupt_abandons_home():
+    """CR 1498-1500: HOME interrupted by an interrupt is not resumed; the axis stops homing."""
+    src = "ON INT 3 GOSUB s\nSET I_FUNCTION_1 1\nSET HOME_VEL 5\nHOME\nDELAY 2000\nPRINT AXEND & 1\n" \
+          "SUBMAINPROG\nSUBPROG s\nRETURN\nENDPROG\n"
+    run = run_source(src, 5000, inputs=[(3, 1, 1000)])
+    assert run.prints == ["1"]
+    assert run.controller.axis.homing is None and not run.controller.homed

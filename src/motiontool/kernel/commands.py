@@ -25,13 +25,18 @@ def command(*names):
 
 # --- waits ---------------------------------------------------------------------------------------------
 class Until(Wait):
-    def __init__(self, condition, value=None, resumable=True):
+    def __init__(self, condition, value=None, resumable=True, on_abandon=None):
         self.condition = condition
         self.value = value
         self.resumable = resumable
+        self.on_abandon = on_abandon
 
     def done(self) -> bool:
         return self.condition()
+
+    def abandon(self) -> None:
+        if self.on_abandon is not None:
+            self.on_abandon()
 
 
 class WaitT(Wait):
@@ -76,6 +81,9 @@ def _motion_allowed(ctl) -> None:
 def _check_soft_limits(ctl, target_qc: int) -> None:
     p = ctl.params
     offset = ctl.axis.limit_offset
+    blocked = ctl.limit_blocked_direction  # DG 11872-11876: after a cleared limit error, 198 that way
+    if blocked and (target_qc - ctl.axis.apos) * blocked > 0:
+        raise ControllerError(198, "move again in the direction of the violated limit")
     if p["SWNEGLIMACT"] and target_qc < p["NEGLIMIT"] - offset:
         raise ControllerError(111, f"target {target_qc} qc below NEGLIMIT")
     if p["SWPOSLIMACT"] and target_qc > p["POSLIMIT"] - offset:
@@ -129,6 +137,8 @@ def cvel(ctl, vm, args):
 def cstart(ctl, vm, args):
     _motion_allowed(ctl)
     v = getattr(ctl, "speed_value", 0)
+    if ctl.limit_blocked_direction and v * ctl.limit_blocked_direction > 0:
+        raise ControllerError(198, "speed mode again in the direction of the violated limit")
     ctl.axis.run_at(ctl.axis.scaling.velocity(v), _limits(ctl, v))
 
 
@@ -202,8 +212,12 @@ def home(ctl, vm, args, index_only=False):
     axis.homing = Homing(axis, home_type, s.velocity(home_vel), limits, 0 if index_only else p["HOME_OFFSET"],
                          switch, index_only=index_only)
     axis.mode = "homing"
+    def abandon() -> None:
+        axis.homing = None
+        axis.stop(limits, remember=False)
+
     # CR 1505: HOME runs to the end even with NOWAIT ON; an interrupt abandons it (CR 1498-1500).
-    return Until(lambda: axis.homing is None, resumable=False)
+    return Until(lambda: axis.homing is None, resumable=False, on_abandon=abandon)
 
 
 COMMANDS["INDEX"] = lambda ctl, vm, args: home(ctl, vm, args, index_only=True)

@@ -73,6 +73,7 @@ class Controller:
         self.error_history: list[ErrorRecord] = []
         self.motion = MotionSettings()
         self.sysvar_memory: dict[int, int] = {}
+        self.limit_blocked_direction = 0  # +1/-1 after a limit error: moving that way again is error 198
         self.stopped_line: int | None = None  # the line a breakpoint or single step stopped before
         self.breakpoints: set[int] = set()   # source lines (of the main file) where a debug build stops
         self.single_step = False
@@ -92,6 +93,8 @@ class Controller:
                                 p["FFACC"], max(1, p["TIMER"]), max(1, p["POSERR"]), p["POSERRTIME"],
                                 p["REGWMAX"], p["REGWMIN"])
         self.axis.target_window = (p["TESTTIM"], p["TESTVAL"], p["TESTWIN"])
+        self.soft_limits = (p["NEGLIMIT"] if p["SWNEGLIMACT"] else None,
+                            p["POSLIMIT"] if p["SWPOSLIMACT"] else None)
 
     def _parameter_changed(self, index: int, value: int, source: str) -> None:
         self._functions = None
@@ -234,6 +237,10 @@ class Controller:
             self.axis.tick()
             if self.axis.homing is not None and self.axis.homing.done:
                 self._homing_finished()
+            if self.soft_limits != (None, None) and self.axis.mode not in ("idle", "positioning"):
+                self._soft_limits_while_moving()
+            if self.limit_blocked_direction and self._inside_soft_limits():
+                self.limit_blocked_direction = 0
         except ControllerError as exc:
             self.raise_error(exc)
         if self.recorder.active is not None:
@@ -274,6 +281,7 @@ class Controller:
             if self._function_input(name, functions) and self.error != 125 and self.axis.control_on:
                 direction = -1 if name == iomod.NEG_LIMIT else 1
                 if self.axis.plant.velocity * direction >= 0 or self.axis.mode != "idle":
+                    self.limit_blocked_direction = direction
                     self.raise_error(ControllerError(125, f"{name.replace('_', ' ')} switch"))
         # DG 10336-10418: error clear, break and continue inputs act on their rising edge
         now = {name: self._function_input(name, functions)
@@ -286,6 +294,26 @@ class Controller:
             self.break_program()
         if now.get(iomod.CONTINUE) and not last.get(iomod.CONTINUE):
             self.continue_program()
+
+    def _soft_limits_while_moving(self) -> None:
+        """DG 10213: in speed (and sync) modes a software limit is found when the axis reaches it."""
+        low, high = self.soft_limits
+        apos = self.axis.apos + self.axis.limit_offset
+        v = self.axis.plant.velocity
+        if self.error:
+            return
+        if low is not None and apos <= low and v < 0:
+            self.limit_blocked_direction = -1
+            raise ControllerError(111, "actual position reached NEGLIMIT")
+        if high is not None and apos >= high and v > 0:
+            self.limit_blocked_direction = 1
+            raise ControllerError(111, "actual position reached POSLIMIT")
+
+    def _inside_soft_limits(self) -> bool:
+        low, high = self.soft_limits
+        apos = self.axis.apos + self.axis.limit_offset
+        return (low is None or apos > low) and (high is None or apos < high) and not any(
+            self._function_input(n, self.input_functions()) for n in (iomod.NEG_LIMIT, iomod.POS_LIMIT))
 
     def _read_sysvar_for_recording(self, index: int) -> int:
         value = read_sysvar(self, index)

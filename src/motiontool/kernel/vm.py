@@ -60,6 +60,9 @@ class Wait:
     def resume(self) -> None:
         """Called when an interrupt handler returns to this wait."""
 
+    def abandon(self) -> None:
+        """Called when an interrupt abandons a wait that is not resumable (HOME, INDEX: CR 1498-1500)."""
+
 
 class Host(Protocol):
     def command(self, vm: VM, call: CommandCall, args: list) -> Any: ...
@@ -131,7 +134,11 @@ class VM:
 
     def enter_interrupt(self, sub: int, kind: str) -> None:
         """Call subprogram `sub` as an interrupt handler now (between two instructions)."""
-        self.subs.append(SubReturn(self.pc, sub, kind, self.wait, len(self.stack)))
+        wait = self.wait
+        if wait is not None and not wait.resumable and kind != "ERROR":
+            wait.abandon()  # an ordinary interrupt ends HOME; ON ERROR does not (CR 2662-2664)
+            wait = None
+        self.subs.append(SubReturn(self.pc, sub, kind, wait, len(self.stack)))
         self.wait = None
         self.pc = self.image.subprograms[sub].entry
 
@@ -319,7 +326,7 @@ class VM:
             self.pc = ret.return_pc
             if ret.interrupt:
                 del stack[ret.stack_depth:]
-                if ret.wait is not None and ret.wait.resumable:
+                if ret.wait is not None:
                     ret.wait.resume()
                     self.wait = ret.wait
                 elif ret.wait is not None and ret.wait.value is not None:

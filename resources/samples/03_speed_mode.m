@@ -1,0 +1,40 @@
+// Title: Speed mode: run, reverse and stop a conveyor
+// Shows: CVEL, CSTART, CSTOP, ACC, DEC, AVEL, AXEND, DELAY
+// Run: motiontool run 03_speed_mode.m --seconds 10
+// Test-seconds: 10
+// Expect: forward:  AVEL 25600  speed mode 1
+// Expect: faster:   AVEL 51203
+// Expect: reverse:  AVEL -25583
+// Expect: stopped:  AVEL 0  speed mode 0
+// Expect: holding at 73600
+// Expect-end: ended
+//
+// In speed mode the axis has no target, only a velocity. CVEL sets it
+// (negative = reverse) and CSTART switches the mode on. While the mode
+// is active, a new CVEL takes effect at once, ramped with ACC/DEC, so a
+// conveyor can be slowed down or reversed without stopping first.
+// CSTOP brakes with DEC and the axis then holds its position again.
+//
+// AXEND bit value 4 tells whether speed mode is active; AVEL is the
+// measured speed (qc/s), averaged over the last 20 ms.
+
+ACC 40
+DEC 40
+
+CVEL 25                 // 25 % of VELMAX
+CSTART
+DELAY 1000
+PRINT "forward:  AVEL ", AVEL, "  speed mode ", (AXEND & 4) == 4
+
+CVEL 50                 // faster, no stop needed
+DELAY 1000
+PRINT "faster:   AVEL ", AVEL
+
+CVEL -25                // reverse: ramps down through zero and back up
+DELAY 2000
+PRINT "reverse:  AVEL ", AVEL
+
+CSTOP                   // brake with DEC, then hold position
+DELAY 1000
+PRINT "stopped:  AVEL ", AVEL, "  speed mode ", (AXEND & 4) == 4
+PRINT "holding at ", APOS
