@@ -198,13 +198,7 @@ class Axis:
         if self.profile.done:
             self.profile.hold(self.profile.position - by_qc)
         else:
-            self._shift_profile(by_qc)
-
-    def _shift_profile(self, by_qc: int) -> None:
-        pg = self.profile
-        pg.position -= by_qc
-        if pg.target is not None:
-            pg.target -= by_qc
+            self.profile.shift(-by_qc)  # the running plan moves with the origin
 
     def index_period(self) -> int:
         """Encoder index pulses: one per revolution, 4 × 32-01 ENCODER qc, unless the plant says otherwise."""

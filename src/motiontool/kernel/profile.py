@@ -30,8 +30,8 @@ _CRUISE = 3  # constant velocity `value`, acceleration 0
 class Limits:
     """Limits of one motion. ``jerk`` = (J1 acc ramp-up, J2 acc ramp-down, J3 dec ramp-up, J4 dec ramp-down).
 
-    As for JERKMIN2..4 [DG 9120-9160], a jerk of 0 in J2..J4 means "same as J1"; J1 must be > 0 for type 2.
-    Type 1 (S-ramp) does not use the jerk (docs/profile-generator.md).
+    As for JERKMIN2..4 [DG 1888-1890, 9102, 9140, 9170], a jerk of 0 in J2..J4 means "same as J1"; J1 must be
+    > 0 for type 2. Type 1 (S-ramp) does not use the jerk (docs/profile-generator.md).
     """
 
     vel: float
@@ -142,7 +142,7 @@ class _JerkPlanner:
         a1 >= 0 when more velocity is needed, a1 <= 0 otherwise (the callers guarantee it).
         """
         j1, j2, j3, j4, acc, dec = self.j1, self.j2, self.j3, self.j4, self.acc, self.dec
-        if a > acc:  # outside the limits: first bring the acceleration inside [DG 1900]
+        if a > acc:  # outside the limits: first bring the acceleration inside [DG 1896]
             t = (a - acc) / j2
             out.append((t, -j2))
             v += 0.5 * (a + acc) * t
@@ -197,7 +197,7 @@ class _JerkPlanner:
             seg: list = []
             if rv1 >= 0.0:
                 if ra < 0.0 and 2.0 * j4 * rv < ra * ra:
-                    # even the gentlest braking passes v = 0 (DG 1924-1930): ramp down with J4 through zero
+                    # even the gentlest braking passes v = 0 [DG 1922-1924]: ramp down with J4 through zero
                     r = math.sqrt(ra * ra - 2.0 * j4 * rv)
                     seg.append(((-ra - r) / j4, j4))
                     v, a = 0.0, -m * r
@@ -205,7 +205,7 @@ class _JerkPlanner:
                     self._region(rv, ra, rv1, 0.0, seg)
                     v = None  # done
             else:
-                # reversal: reach v = 0 with a deceleration z that continues as acceleration [DG 1943-1948]
+                # reversal: reach v = 0 with a deceleration z that continues as acceleration [DG 1898, 1940-1942]
                 z = min(self.acc, self.dec, math.sqrt(2.0 * j2 * -rv1))
                 lo = ra if ra < 0.0 else 0.0
                 hi = ra if ra > 0.0 else 0.0
@@ -255,10 +255,13 @@ class ProfileGenerator:
         "position", "velocity", "acceleration", "mode", "target",
         "_limits", "_planner", "_segs", "_idx", "_t", "_static", "_end_t", "_reach_t", "_end_p",
         "_clamp_from", "_clamp", "_dir", "_tgt",
-        "_s_t0", "_s_t1", "_s_p", "_s_v", "_s_a", "_s_j", "_s_amp", "_s_w2",
+        "_s_t0", "_s_t1", "_s_p", "_s_v", "_s_a", "_s_j", "_s_amp", "_s_w2", "_off", "_last_p",
     )  # fmt: skip
 
     def __init__(self, position: float = 0.0) -> None:
+        self._limits: Limits | None = None
+        self._planner: _LinearPlanner | _JerkPlanner | None = None
+        self._dir = self._tgt = self._off = self._s_p = 0.0
         self.hold(position)
 
     # ---------------------------------------------------------------------------------------------- commands
@@ -271,12 +274,21 @@ class ProfileGenerator:
         self.acceleration = 0.0
         self.mode = "idle"
         self.target = None
-        self._limits = None
         self._segs = ()
         self._static = True
-        self._clamp = False
+        self._clamp = 0
         self._t = self._end_t = self._reach_t = 0.0
-        self._end_p = self.position
+        self._end_p = self._last_p = self.position
+
+    def shift(self, delta: float) -> None:
+        """Move the position, the target and the running plan by ``delta`` qc (origin change, position wrap).
+
+        Assigning ``position`` (and ``target``) directly while moving has the same effect on the next step.
+        """
+        self.position += delta
+        if self.target is not None:
+            self.target += delta
+        self._moved()
 
     def move_to(self, target: float, limits: Limits) -> None:
         """POSA/POSR: go to ``target`` from the current state; re-plans a running move seamlessly."""
@@ -293,7 +305,7 @@ class ProfileGenerator:
         dist = target - p
         scale = abs(dist) + abs(d_stop) + 1.0
         if abs(dist - d_stop) <= 1e-12 * scale:
-            segs, m, first_stop = stop, 1.0, None  # the stop itself ends there (may pass v = 0: no clamp)
+            segs, m = stop, None  # the stop itself ends there
         else:
             m = 1.0 if dist > d_stop else -1.0
             rv, ra, rd = m * v, m * a, m * dist  # mirrored so that the final approach is forwards
@@ -302,13 +314,11 @@ class ProfileGenerator:
             pl.change(rv, ra, vp, segs)
             if cruise > 0.0:
                 segs.append((cruise, _CRUISE, vp))
-            first_stop = len(segs)
             pl.change(vp, 0.0, 0.0, segs)
             segs = [(d, k, m * x) for d, k, x in segs]
         self.mode = "position"
         self.target = target
-        self._dir, self._tgt = m, target
-        self._load(segs, first_stop)
+        self._load(segs, m, target)
 
     def run_at(self, velocity: float, limits: Limits) -> None:
         """Speed mode (CSTART/CVEL): ramp to the signed ``velocity`` (clamped to ±vel) and keep it."""
@@ -321,7 +331,7 @@ class ProfileGenerator:
         segs.append((_INF, _CRUISE, v1))
         self.mode = "velocity"
         self.target = None
-        self._load(segs, None)
+        self._load(segs, 0.0, 0.0)
 
     def stop(self, limits: Limits) -> None:
         """MOTOR STOP / CSTOP / Esc: decelerate to standstill (final position free)."""
@@ -330,7 +340,7 @@ class ProfileGenerator:
         pl.change(self.velocity, self.acceleration, 0.0, segs)
         self.mode = "stop"
         self.target = None
-        self._load(segs, None)
+        self._load(segs, None, None)
 
     # ---------------------------------------------------------------------------------------------- the tick
 
@@ -338,6 +348,8 @@ class ProfileGenerator:
         """Advance one tick."""
         if self._static:
             return
+        if self.position != self._last_p:
+            self._moved()
         t = self._t + 1.0
         self._t = t
         if t >= self._s_t1 and not self._enter(t):
@@ -356,13 +368,17 @@ class ProfileGenerator:
             p += amp * (0.25 * tau * tau + (c - 1.0) / (2.0 * w2 * w2))
             v += amp * (0.5 * tau - math.sin(w2 * tau) / (2.0 * w2))
             a += amp * 0.5 * (1.0 - c)
-        if self._clamp:  # final approach: rounding must not carry the samples past the target
+        c = self._clamp
+        if c:  # final approach: rounding must not move the samples back or past the end
             d = self._dir
             if d * (p - self._tgt) > 0.0:
                 p = self._tgt
+            elif c == 2 and d * (p - self.position) < 0.0:  # (the previous sample may be before the turn)
+                p = self.position
             if d * v < 0.0:
                 v = 0.0
-        self.position = p
+            self._clamp = 2
+        self.position = self._last_p = p
         self.velocity = v
         self.acceleration = a
 
@@ -387,7 +403,7 @@ class ProfileGenerator:
     # ---------------------------------------------------------------------------------------------- internals
 
     def _use(self, limits: Limits) -> _LinearPlanner | _JerkPlanner:
-        if limits != self._limits or self._planner is None:
+        if self._planner is None or limits != self._limits:
             self._planner = _make_planner(limits)
             self._limits = limits
         return self._planner
@@ -437,8 +453,11 @@ class ProfileGenerator:
         flo = f(lo)
         return lo, (-flo / lo if lo > 0.0 and flo < 0.0 else 0.0)
 
-    def _load(self, raw: list, first_stop: int | None) -> None:
-        """Turn raw segments into (t1, t0, p0, v0, a0, j, value, amp, w2) records and start them."""
+    def _load(self, raw: list, direction: float | None, end: float | None) -> None:
+        """Turn raw segments into (t1, t0, p0, v0, a0, j, value, amp, w2) records and start them.
+
+        ``direction``/``end``: sense and end position of the final approach, None = that of the last segment.
+        """
         t = 0.0
         p, v, a = self.position, self.velocity, self.acceleration
         recs = []
@@ -471,21 +490,29 @@ class ProfileGenerator:
         self._end_t = t if t < _INF else recs[-1][1]
         self._reach_t = self._end_t
         self._end_p = p
-        # index of the first record of the final stop (raw indices shift when empty segments are dropped)
-        self._clamp_from = self._first_rec(raw, first_stop)
-        self._clamp = False
+        if direction is None:
+            v_last = recs[-1][3] if recs else 0.0
+            direction = 1.0 if v_last > 0.0 else -1.0 if v_last < 0.0 else 0.0
+        if end is None:
+            end = p
+        self._dir, self._tgt = direction, end
+        # the samples are clamped from the last start of a segment at v = 0 or moving the other way on
+        i = len(recs) - 1
+        while i >= 0 and recs[i][3] * direction > 0.0:
+            i -= 1
+        self._clamp_from = i + 1 if direction else 1 << 62
+        self._clamp = 0
+        self._off = 0.0
+        self._last_p = self.position
         self._t = 0.0
         self._idx = -1
         self._s_t1 = -_INF
         self._static = False
-        if not recs:
-            self._finish()
-
-    @staticmethod
-    def _first_rec(raw: list, first_stop: int | None) -> int:
-        if first_stop is None:
-            return 1 << 62
-        return sum(1 for d, _k, _x in raw[:first_stop] if d > 0.0)
+        if self._end_t <= _END_EPS:  # a change shorter than that is done at once
+            if self.mode == "velocity":
+                self.velocity, self.acceleration = recs[-1][3], 0.0
+            else:
+                self._finish()
 
     def _enter(self, t: float) -> bool:
         """Move to the segment containing tick t; False (and the final state set) when the plan is over."""
@@ -503,15 +530,26 @@ class ProfileGenerator:
         r = recs[i]
         self._s_t1 = r[0] - _END_EPS
         self._s_t0 = r[1]
-        self._s_p, self._s_v, self._s_a, self._s_j = r[2], r[3], r[4], r[5]
+        self._s_p, self._s_v, self._s_a, self._s_j = r[2] + self._off, r[3], r[4], r[5]
         self._s_amp, self._s_w2 = r[7], r[8]
-        if i >= self._clamp_from:
-            self._clamp = True
+        if i >= self._clamp_from and not self._clamp:
+            self._clamp = 1
         return True
 
+    def _moved(self) -> None:
+        """``position`` was changed from outside: carry the plan along (the target follows ``target``)."""
+        d = self.position - self._last_p
+        self._last_p = self.position
+        if self._static:
+            return
+        self._off += d
+        self._s_p += d
+        self._end_p += d
+        self._tgt = self.target if self.mode == "position" else self._tgt + d
+
     def _finish(self) -> None:
-        self.position = self._tgt if self.mode == "position" else self._end_p
+        self.position = self._last_p = self._tgt if self.mode == "position" else self._end_p
         self.velocity = 0.0
         self.acceleration = 0.0
-        self._clamp = False
+        self._clamp = 0
         self._static = True
