@@ -122,7 +122,11 @@ def tokenize(text: str, file: str, line: int = 1, col: int = 1,
                 raise CompileError("unterminated comment: '/*' without '*/'", loc_at(start))
             inner = text.find("/*", end, close)
             if inner >= 0:
-                raise CompileError("nested comments are not allowed ('/*' inside a comment)", loc_at(inner))
+                inner_line = line + text.count("\n", start, inner)
+                inner_col = inner - (text.rfind("\n", 0, inner) + 1) + 1 if inner_line != line else \
+                    inner - line_start + 1
+                raise CompileError("nested comments are not allowed ('/*' inside a comment)",
+                                   Location(file, inner_line, inner_col))
             newlines = text.count("\n", start, close)
             if newlines:  # a comment over several lines ends the statement on its first line
                 append(Token(NEWLINE, "\n", None, loc_at(start)))

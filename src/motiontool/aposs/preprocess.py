@@ -99,7 +99,10 @@ class Preprocessor:
             if line and line[0].kind == DIRECTIVE:
                 self._directive(line[0], name, conds, out, depth)
             elif line and (not conds or conds[-1].active):
-                out.extend(self._expand(line, name))
+                try:
+                    out.extend(self._expand(line, name))
+                except RecursionError:
+                    raise CompileError("macro expansion nested too deeply", line[0].loc) from None
                 out.append(tok)
             elif not line and (not conds or conds[-1].active):
                 out.append(tok)  # keep empty lines: the parser counts statements by NEWLINE

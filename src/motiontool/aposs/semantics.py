@@ -113,17 +113,28 @@ def _checked(name: str, fn, lo: float = -math.inf, hi: float = math.inf):
     def call(x: float) -> float:
         if not lo <= x <= hi:
             raise OperatorError(f"{name}({x}) is not defined (error 156)")
-        return fn(x)
+        try:
+            return fn(x)
+        except (ValueError, OverflowError):  # e.g. sin(inf)
+            raise OperatorError(f"{name}({x}) is not defined (error 156)") from None
     return call
+
+
+def _round(x: float) -> float:
+    """round(x): nearest integer value, halves away from zero (DG 6579-6581: round(-6.666) = -7.0)."""
+    if not math.isfinite(x):
+        raise OperatorError(f"round({x}) is not defined (error 156)")
+    return float(math.floor(abs(x) + 0.5) * (1 if x >= 0 else -1))
 
 
 # DOUBLE functions (DG 6553-6581): illegal arguments raise error 156 on the controller.
 DOUBLE_FUNCTIONS = {
-    "SQRT": _checked("sqrt", math.sqrt, 0.0), "SIN": math.sin, "COS": math.cos, "TAN": math.tan,
+    "SQRT": _checked("sqrt", math.sqrt, 0.0), "SIN": _checked("sin", math.sin),
+    "COS": _checked("cos", math.cos), "TAN": _checked("tan", math.tan),
     "ACOS": _checked("acos", math.acos, -1.0, 1.0), "ASIN": _checked("asin", math.asin, -1.0, 1.0),
-    "ATAN": math.atan, "GRAD": math.degrees, "RAD": math.radians,
-    "LN": _checked("ln", math.log, math.ulp(0.0)), "FABS": math.fabs,
-    "ROUND": lambda x: float(math.floor(abs(x) + 0.5) * (1 if x >= 0 else -1)),
+    "ATAN": _checked("atan", math.atan), "GRAD": _checked("grad", math.degrees),
+    "RAD": _checked("rad", math.radians), "LN": _checked("ln", math.log, math.ulp(0.0)),
+    "FABS": math.fabs, "ROUND": _round,
 }
 
 
