@@ -1,54 +1,125 @@
-"""The main window opens with the APOSS menu bar and can be captured headless."""
+"""The main window: menus of the manual, editing, syntax check, execute/break through the link (issue 7)."""
 
 import subprocess
 import sys
+
+import pytest
+from PySide6.QtCore import QSettings, Qt
 
 from motiontool.ui.main_window import MainWindow
 
 APOSS_MENUS = ["File", "Edit", "Development", "Controller", "Tools", "Settings", "Window", "Help"]
 
 
-def test_menu_bar_has_the_aposs_menus(qtbot):
+@pytest.fixture
+def window(qtbot, tmp_path):
+    settings = QSettings(str(tmp_path / "settings.ini"), QSettings.Format.IniFormat)
+    w = MainWindow(settings=settings, realtime_factor=50.0)
+    w.ask_to_save = False
+    qtbot.addWidget(w)
+    w.show()
+    qtbot.waitExposed(w)
+    w.activateWindow()
+    yield w
+    for editor in w.editors():  # no "Save changes?" question at teardown
+        editor.document().setModified(False)
+    w.bridge.detach()
+
+
+def test_menu_bar_has_the_aposs_menus(window):
     """ide-spec 1.26-1.50: File/Edit/Development/Controller/Tools/Settings/Window/Help."""
-    window = MainWindow()
-    qtbot.addWidget(window)
     titles = [a.text().replace("&", "") for a in window.menuBar().actions()]
     assert titles == APOSS_MENUS
 
 
-def test_manual_shortcuts_are_bound(qtbot):
+def test_manual_shortcuts_are_bound(window):
     """DG 2380-2391 / ide-spec 2.4, 1.39: Execute is F5, Syntax Check is F4, Command List is F12."""
-    window = MainWindow()
-    qtbot.addWidget(window)
     shortcuts = {name: window.actions_by_text[name].shortcut().toString()
-                 for name in ("Execute", "Syntax Check", "Command List...", "Singlestep")}
-    assert shortcuts == {"Execute": "F5", "Syntax Check": "F4", "Command List...": "F12", "Singlestep": "F9"}
+                 for name in ("Execute", "Syntax Check", "Command List...", "Break", "Next Bookmark")}
+    assert shortcuts == {"Execute": "F5", "Syntax Check": "F4", "Command List...": "F12", "Break": "Esc",
+                         "Next Bookmark": "F2"}
 
 
-def test_open_file_shows_text_and_cursor_position(qtbot, tmp_path):
+def test_open_file_shows_text_and_cursor_position(window, tmp_path):
     """ide-spec 1.5: the status bar shows line:column."""
     program = tmp_path / "hello.m"
     program.write_text("DIM a[2]\nPRINT \"hello\"\n", encoding="utf-8")
-    window = MainWindow()
-    qtbot.addWidget(window)
     editor = window.open_file(program)
     assert editor.toPlainText().startswith("DIM a[2]")
     assert window.tabs.tabText(window.tabs.currentIndex()) == "hello.m"
-    cursor = editor.textCursor()
-    cursor.movePosition(cursor.MoveOperation.Down)
-    cursor.movePosition(cursor.MoveOperation.Right)
-    editor.setTextCursor(cursor)
+    editor.goto_line(2, 2)
     assert window.cursor_label.text() == "2:2"
+    assert window.open_file(program) is editor  # one program, one window (ide-spec 1.1)
+
+
+def test_sample_syntax_check_and_error_at_the_right_line(window, qtbot):
+    """DG 2479-2483: F4 test-compiles; on an error the message names the line and the caret goes there."""
+    editor = window.open_sample("01_positioning.m")
+    qtbot.keyClick(editor, Qt.Key.Key_F4)
+    assert "Syntax check: no errors" in window.messages.toPlainText()
+    editor.goto_line(5, 1)
+    editor.insertPlainText("POSA\n")
+    assert window.development.syntax_check() is False
+    text = window.messages.toPlainText()
+    assert ":5:1: error: POSA needs more arguments" in text
+    assert editor.caret_line_col()[0] == 5
+    window.live_check()
+    assert any(d[0] == 5 and d[2] == "error" for d in editor.diagnostics())
+
+
+def test_execute_prints_in_the_messages_window_and_esc_breaks(window, qtbot):
+    """DG 2380-2418: F5 compiles, downloads and starts; PRINT output appears prefixed with the controller
+    ID; Esc stops the program and the axis decelerates."""
+    editor = window.new_file()
+    editor.setPlainText('PRINT "start"\nVEL 100\nACC 100\nDEC 100\nmain:\nPOSA 400000\nPOSA 0\nGOTO main\n')
+    qtbot.keyClick(editor, Qt.Key.Key_F5)
+    qtbot.waitUntil(lambda: "[01] start" in window.messages.toPlainText(), timeout=5000)
+    qtbot.waitUntil(lambda: window.bridge.last_status is not None
+                    and window.bridge.last_status.program_state == "running", timeout=5000)
+    window.actions_by_text["Break"].trigger()
+    qtbot.waitUntil(lambda: window.bridge.link.status().program_state == "break", timeout=5000)
+    qtbot.waitUntil(lambda: window.bridge.link.status().axend & 1, timeout=10000)  # decelerated to standstill
+    assert "stopped" in window.controller_label.text() or "break" in window.messages.toPlainText()
+
+
+def test_command_list_inserts_the_preview(window, qtbot):
+    """DG 2554-2607: POSA with position 3000 and a comment previews as `POSA 3000  // …` and is inserted."""
+    from motiontool.ui.command_list import CommandListDialog
+
+    editor = window.new_file()
+    dialog = CommandListDialog(window)
+    qtbot.addWidget(dialog)
+    dialog.insert_requested.connect(editor.insertPlainText)
+    dialog.select_command("POSA")
+    dialog.fields[0].setText("3000")
+    dialog.comment.setText("Move to position 3000")
+    assert dialog.preview.text() == "POSA 3000  // Move to position 3000"
+    dialog.insert_button.click()
+    assert editor.toPlainText() == "POSA 3000  // Move to position 3000"
+
+
+def test_recent_files_and_recovery(window, tmp_path):
+    program = tmp_path / "r.m"
+    program.write_text("x = 1\n")
+    window.open_file(program)
+    assert window.recent_files()[0] == str(program.resolve())
+    editor = window.current_editor()
+    editor.insertPlainText("y = 2\n")
+    window.autosave()
+    editor.document().setModified(False)
+    window.tabs.removeTab(window.tabs.currentIndex())  # as if the session crashed: no save, no discard
+    assert window.recover() == 1
+    assert "y = 2" in window.current_editor().toPlainText()
 
 
 def test_screenshot_command_writes_png(tmp_path):
-    """`motiontool --screenshot PATH` paints the window, writes a PNG and exits 0."""
+    """`motiontool --screenshot PATH --open FILE` paints the window, writes a PNG and exits 0."""
     out = tmp_path / "window.png"
-    proc = subprocess.run([sys.executable, "-m", "motiontool", "--screenshot", str(out)],
-                          capture_output=True, text=True, timeout=120)
+    proc = subprocess.run([sys.executable, "-m", "motiontool", "--screenshot", str(out), "--open",
+                           "resources/samples/01_positioning.m"], capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stderr
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    assert out.stat().st_size > 5000  # a real picture, not an empty image
+    assert out.stat().st_size > 5000
 
 
 def test_without_display_the_gui_explains_what_to_do(tmp_path):

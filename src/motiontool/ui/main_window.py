@@ -1,157 +1,332 @@
-"""The APOSS main window: menu bar as in the manual, edit tabs, Communication pane, status bar.
-
-Entries that are not built yet are present but disabled, so the menu structure users know is visible
-from the start (ide-spec 1.26, 1.39-1.50, 2.14-2.15).
-"""
+"""The APOSS main window (ide-spec 1.1-1.50, 2.1-2.15): program tabs with the CodeEditor, Communication pane,
+outline, status bar with the controller, the manual's menus and shortcuts. A controller is reached only
+through the LinkBridge (a comms Link)."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from PySide6.QtCore import Qt
-from PySide6.QtGui import QAction, QFont, QFontDatabase, QKeySequence
+from PySide6.QtCore import QSettings, Qt, QTimer
+from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import (
     QDockWidget,
+    QFileDialog,
     QLabel,
+    QListWidget,
+    QListWidgetItem,
     QMainWindow,
     QMessageBox,
-    QPlainTextEdit,
     QTabWidget,
 )
 
 from motiontool import __version__
+from motiontool.aposs.driver import CompileResult, compile_source
+from motiontool.resources import resources_path
+from motiontool.ui.bridge import LinkBridge
+from motiontool.ui.development import Development
+from motiontool.ui.editor.bookmarks import BookmarkStore
+from motiontool.ui.editor.code_editor import CodeEditor
+from motiontool.ui.messages import MessagesPane
+from motiontool.ui.recovery import Recovery
 
-# (menu, [(text, shortcut or None, slot name or None)]); None entry = separator.
-_MENUS: list[tuple[str, list[tuple[str, str | None, str | None] | None]]] = [
-    ("&File", [
-        ("&New", "Ctrl+N", "new_file"), ("&Open...", "Ctrl+O", None), ("&Close", None, "close_tab"),
-        ("&Save", "Ctrl+S", None), ("Save &as...", None, None), None,
-        ("&Print...", "Ctrl+P", None), ("Print set&up...", None, None), None,
-        ("Sa&mple", None, None), None, ("E&xit Program", None, "close"),
-    ]),
-    ("&Edit", [
-        ("&Undo", "Ctrl+Z", None), ("Cu&t", "Ctrl+X", None), ("&Copy", "Ctrl+C", None),
-        ("&Paste", "Ctrl+V", None), None, ("&Find...", "Ctrl+F", None), ("&Replace...", "Ctrl+R", None),
-        ("Find in F&iles...", None, None), None, ("Next Bookmark", "F2", None),
-        ("Previous Bookmark", "Shift+F2", None), ("Toggle Bookmark", "Ctrl+F2", None),
-        ("Clear All Bookmarks", None, None), None, ("Convert Tabs", None, None),
-    ]),
-    ("&Development", [
-        ("&Execute", "F5", None), ("&Break", "Esc", None), ("C&ontinue", None, None), None,
-        ("Prepare Singlestep", None, None), ("Go", None, None), ("Singlestep", "F9", None),
-        ("End Debug", None, None), None, ("Watch Add", None, None), ("Watch Start", None, None),
-        ("Watch Stop", None, None), None, ("&Syntax Check", "F4", None), ("Compile to file...", None, None),
-        None, ("Break all", None, None), ("Start all", None, None), ("Download all", None, None),
-        ("Delete Programs all", None, None), None, ("Select Controller...", None, None),
-        ("Close Interface", None, None), ("Close All Interfaces", None, None), None,
-        ("Command List...", "F12", None),
-    ]),
-    ("&Controller", [
-        ("&Programs...", None, None), ("P&arameters", None, None), ("&Memory", None, None),
-        ("&Reset", None, None), None, ("Error &History...", None, None),
-        ("&Diagnostic Report...", None, None),
-    ]),
-    ("&Tools", [
-        ("&CAM-Editor", None, None), ("&Array Editor", None, None), ("&Oscilloscope", None, None),
-    ]),
-    ("&Settings", [
-        ("&Editor...", None, None), ("&Compiler...", None, None), ("&Options...", None, None),
-        ("&Interface...", None, None), ("&Language...", None, None),
-    ]),
-    ("&Window", [
-        ("&Cascade", None, None), ("Tile &vertically", None, None), ("Tile &horizontally", None, None),
-    ]),
-    ("&Help", [
-        ("&Contents", "F1", None), ("&Index", None, None), ("&SDO Dictionary", "F11", None), None,
-        ("&About Program", None, "about"),
-    ]),
-]
+LIVE_CHECK_MS = 600   # live diagnostics after this pause in typing
+MAX_RECENT = 8
 
 
 class MainWindow(QMainWindow):
-    """The APOSS window: edit tabs, Communication pane, status bar with line:column and controller."""
+    """The APOSS window: edit tabs, Communication pane, outline, status bar with line:column and controller."""
 
-    def __init__(self) -> None:
+    ask_to_save = True  # tests and scripted runs switch the "Save changes?" question off
+
+    def __init__(self, settings: QSettings | None = None, realtime_factor: float = 1.0) -> None:
         super().__init__()
+        self.settings = settings or QSettings()
+        self.realtime_factor = realtime_factor
         self.setWindowTitle("motiontool — APOSS")
-        self.resize(1100, 720)
+        self.resize(1180, 760)
         self.actions_by_text: dict[str, QAction] = {}
-        self._build_menus()
+        self.bridge = LinkBridge(self)
+        self.development = Development(self)
+        self.bookmark_store = BookmarkStore(Path(self._config_dir()) / "bookmarks.json")
+        self.recovery = Recovery(Path(self._config_dir()) / "recovery")
 
         self.tabs = QTabWidget(self)
         self.tabs.setTabsClosable(True)
         self.tabs.setDocumentMode(True)
+        self.tabs.setMovable(True)
         self.tabs.tabCloseRequested.connect(self.close_tab)
-        self.tabs.currentChanged.connect(self._update_cursor_label)
+        self.tabs.currentChanged.connect(self._current_changed)
         self.setCentralWidget(self.tabs)
 
-        self.messages = QPlainTextEdit(self)
-        self.messages.setReadOnly(True)
-        self.messages.setFont(QFontDatabase.systemFont(QFontDatabase.SystemFont.FixedFont))
-        dock = QDockWidget("Communication", self)
-        dock.setObjectName("communication")
-        dock.setWidget(self.messages)
-        self.addDockWidget(Qt.DockWidgetArea.BottomDockWidgetArea, dock)
+        self.messages = MessagesPane(self)
+        messages_dock = self._dock("Communication", self.messages, Qt.DockWidgetArea.BottomDockWidgetArea)
+        self.outline = QListWidget(self)
+        self.outline.itemActivated.connect(self._outline_jump)
+        self.outline.itemClicked.connect(self._outline_jump)
+        outline_dock = self._dock("Outline", self.outline, Qt.DockWidgetArea.LeftDockWidgetArea)
+        self.resizeDocks([outline_dock], [170], Qt.Orientation.Horizontal)
+        self.resizeDocks([messages_dock], [160], Qt.Orientation.Vertical)
 
         self.cursor_label = QLabel("1:1")
-        self.controller_label = QLabel("Controller: embedded simulator (not connected)")
+        self.controller_label = QLabel("Controller: not connected")
         self.statusBar().addPermanentWidget(self.controller_label)
         self.statusBar().addPermanentWidget(self.cursor_label)
-        self.log(f"motiontool {__version__} — APOSS programming for the MCO 305")
 
-    def _build_menus(self) -> None:
-        for title, entries in _MENUS:
-            menu = self.menuBar().addMenu(title)
-            for entry in entries:
-                if entry is None:
-                    menu.addSeparator()
-                    continue
-                text, shortcut, slot = entry
-                action = menu.addAction(text)
-                if shortcut:
-                    action.setShortcut(QKeySequence(shortcut))
-                if slot is None:
-                    action.setEnabled(False)  # not built yet; the entry shows where it will be
-                else:
-                    action.triggered.connect(getattr(self, slot))
-                self.actions_by_text[text.replace("&", "")] = action
+        from motiontool.ui.menus import build_menus
 
-    # --- editing ---------------------------------------------------------------------------------
-    def open_file(self, path: Path) -> QPlainTextEdit:
-        """Open a program in a new edit tab (read as UTF-8, undecodable bytes replaced)."""
-        text = path.read_bytes().decode("utf-8", errors="replace")
-        return self._add_editor(path.name, text, path)
+        build_menus(self)
+        self.bridge.printed.connect(lambda t, text: self.messages.controller(1, text))
+        self.bridge.controller_error.connect(self._controller_error)
+        self.bridge.program_event.connect(lambda t, text: self.messages.controller(1, text))
+        self.bridge.status_changed.connect(self._status_changed)
+        self.bridge.connection_changed.connect(self._connection_changed)
 
-    def new_file(self) -> QPlainTextEdit:
+        self._live = QTimer(self)
+        self._live.setSingleShot(True)
+        self._live.setInterval(LIVE_CHECK_MS)
+        self._live.timeout.connect(self.live_check)
+        self._autosave = QTimer(self)
+        self._autosave.setInterval(30_000)
+        self._autosave.timeout.connect(self.autosave)
+        self._autosave.start()
+        self.messages.ide(f"motiontool {__version__} — APOSS programming for the MCO 305")
+        self.restoreGeometry(self.settings.value("window/geometry", b""))
+        self.restoreState(self.settings.value("window/state", b""))
+
+    def _config_dir(self) -> str:
+        path = Path(self.settings.fileName()).parent / "motiontool"
+        path.mkdir(parents=True, exist_ok=True)
+        return str(path)
+
+    def _dock(self, title: str, widget, area) -> QDockWidget:
+        dock = QDockWidget(title, self)
+        dock.setObjectName(title.lower())
+        dock.setWidget(widget)
+        self.addDockWidget(area, dock)
+        return dock
+
+    # --- editors ----------------------------------------------------------------------------------------
+    def current_editor(self) -> CodeEditor | None:
+        widget = self.tabs.currentWidget()
+        return widget if isinstance(widget, CodeEditor) else None
+
+    def editors(self) -> list[CodeEditor]:
+        return [self.tabs.widget(i) for i in range(self.tabs.count())]
+
+    def new_file(self) -> CodeEditor:
         return self._add_editor("Untitled", "", None)
 
-    def _add_editor(self, title: str, text: str, path: Path | None) -> QPlainTextEdit:
-        editor = QPlainTextEdit(self)
-        font = QFontDatabase.systemFont(QFontDatabase.SystemFont.FixedFont)
-        font.setStyleHint(QFont.StyleHint.Monospace)
-        editor.setFont(font)
-        editor.setLineWrapMode(QPlainTextEdit.LineWrapMode.NoWrap)
-        editor.setPlainText(text)
-        editor.setProperty("path", str(path) if path else "")
-        editor.cursorPositionChanged.connect(self._update_cursor_label)
-        self.tabs.setCurrentIndex(self.tabs.addTab(editor, title))
+    def open_file(self, path: Path) -> CodeEditor:
+        """Open a program in a new tab; a program already open is brought to the front (ide-spec 1.1)."""
+        path = Path(path).resolve()
+        for editor in self.editors():
+            if editor.property("path") == str(path):
+                self.tabs.setCurrentWidget(editor)
+                return editor
+        text = path.read_bytes().decode("utf-8", errors="replace").replace("\r\n", "\n")
+        editor = self._add_editor(path.name, text, path)
+        editor.load_bookmarks(self.bookmark_store, path)
+        self._remember_recent(path)
         return editor
 
-    def close_tab(self, index: int | bool = False) -> None:
+    def open_dialog(self) -> None:
+        chosen, _ = QFileDialog.getOpenFileName(self, "Open", "", "APOSS programs (*.m);;All files (*)")
+        if chosen:
+            self.open_file(Path(chosen))
+
+    def open_sample(self, name: str) -> CodeEditor:
+        """File → Sample: a copy of the sample opens as a new, unsaved program (the original stays intact)."""
+        text = resources_path("samples", name).read_text(encoding="utf-8")
+        editor = self._add_editor(name, text, None)
+        editor.setProperty("sample", name)
+        return editor
+
+    def _add_editor(self, title: str, text: str, path: Path | None) -> CodeEditor:
+        editor = CodeEditor(self)
+        editor.setPlainText(text)
+        editor.mark_saved()
+        editor.setProperty("path", str(path) if path else "")
+        editor.cursorLineColChanged.connect(lambda line, col: self.cursor_label.setText(f"{line}:{col}"))
+        editor.textChanged.connect(self._live.start)
+        editor.document().modificationChanged.connect(lambda _m, e=editor: self._update_tab_title(e))
+        editor.openLocationRequested.connect(self._open_location)
+        self.tabs.setCurrentIndex(self.tabs.addTab(editor, title))
+        editor.setFocus()
+        self.live_check()
+        return editor
+
+    def _update_tab_title(self, editor: CodeEditor) -> None:
+        index = self.tabs.indexOf(editor)
+        path = editor.property("path")
+        name = Path(path).name if path else (editor.property("sample") or "Untitled")
+        self.tabs.setTabText(index, name + (" *" if editor.document().isModified() else ""))
+        self._update_title()
+
+    def _open_location(self, path: str, line: int, col: int) -> None:
+        self.open_file(Path(path)).goto_line(line, col)
+
+    def save(self, editor: CodeEditor | None = None, path: Path | None = None) -> bool:
+        from motiontool.fileio import atomic_write_text
+
+        editor = editor or self.current_editor()
+        if editor is None:
+            return False
+        target = path or (Path(editor.property("path")) if editor.property("path") else None)
+        if target is None:
+            chosen, _ = QFileDialog.getSaveFileName(self, "Save as", "program.m", "APOSS programs (*.m)")
+            if not chosen:
+                return False
+            target = Path(chosen)
+        atomic_write_text(target, editor.toPlainText())
+        editor.setProperty("path", str(target.resolve()))
+        editor.mark_saved()
+        editor.save_bookmarks(self.bookmark_store, target.resolve())
+        self.recovery.discard(editor)
+        self._remember_recent(target)
+        self._update_tab_title(editor)
+        return True
+
+    def save_as(self) -> bool:
+        editor = self.current_editor()
+        if editor is None:
+            return False
+        chosen, _ = QFileDialog.getSaveFileName(self, "Save as", editor.property("path") or "program.m",
+                                                "APOSS programs (*.m)")
+        return bool(chosen) and self.save(editor, Path(chosen))
+
+    def close_tab(self, index: int | bool = False) -> bool:
         index = self.tabs.currentIndex() if isinstance(index, bool) else index
-        if index >= 0:
-            self.tabs.removeTab(index)
+        editor = self.tabs.widget(index)
+        if editor is None:
+            return True
+        if editor.document().isModified() and self.ask_to_save:
+            answer = QMessageBox.question(self, "Close", f"Save changes to {self.tabs.tabText(index)}?",
+                                          QMessageBox.StandardButton.Save | QMessageBox.StandardButton.Discard
+                                          | QMessageBox.StandardButton.Cancel)
+            if answer == QMessageBox.StandardButton.Cancel:
+                return False
+            if answer == QMessageBox.StandardButton.Save and not self.save(editor):
+                return False
+        if editor.property("path"):
+            editor.save_bookmarks(self.bookmark_store, editor.property("path"))
+        self.recovery.discard(editor)
+        self.tabs.removeTab(index)
+        editor.deleteLater()
+        return True
 
-    def _update_cursor_label(self) -> None:
-        editor = self.tabs.currentWidget()
-        if isinstance(editor, QPlainTextEdit):
-            cursor = editor.textCursor()
-            self.cursor_label.setText(f"{cursor.blockNumber() + 1}:{cursor.positionInBlock() + 1}")
+    # --- recent files / settings ------------------------------------------------------------------------------
+    def recent_files(self) -> list[str]:
+        value = self.settings.value("recent", [])
+        return [value] if isinstance(value, str) else list(value or [])
 
-    # --- messages --------------------------------------------------------------------------------
-    def log(self, line: str) -> None:
-        """Append a line to the Communication pane."""
-        self.messages.appendPlainText(line)
+    def _remember_recent(self, path: Path) -> None:
+        files = [str(Path(path).resolve())] + [f for f in self.recent_files() if f != str(Path(path).resolve())]
+        self.settings.setValue("recent", files[:MAX_RECENT])
+        self.settings.setValue("last_file", str(Path(path).resolve()))
+        if hasattr(self, "recent_menu"):
+            from motiontool.ui.menus import fill_recent_menu
+
+            fill_recent_menu(self)
+
+    def closeEvent(self, event) -> None:  # noqa: N802 - Qt override
+        while self.tabs.count():
+            if not self.close_tab(0):
+                event.ignore()
+                return
+        self.settings.setValue("window/geometry", self.saveGeometry())
+        self.settings.setValue("window/state", self.saveState())
+        self.messages.stop_log()
+        self.bridge.detach()
+        event.accept()
+
+    # --- live diagnostics, outline ---------------------------------------------------------------------------
+    def live_check(self) -> None:
+        """Compile the current program in the background of typing and show the diagnostics (debounced)."""
+        editor = self.current_editor()
+        if editor is None:
+            return
+        path = editor.property("path") or (editor.property("sample") or "Untitled.m")
+        result = compile_source(editor.toPlainText(), path)
+        self.show_diagnostics(editor, result)
+        self._fill_outline(editor)
+
+    def show_diagnostics(self, editor: CodeEditor, result: CompileResult) -> None:
+        path = editor.property("path") or (editor.property("sample") or "Untitled.m")
+        editor.set_diagnostics(result.diagnostics, file=path)
+
+    def _fill_outline(self, editor: CodeEditor) -> None:
+        self.outline.clear()
+        for item in editor.outline():
+            entry = QListWidgetItem(f"{item.kind}: {item.name}  ({item.line})")
+            entry.setData(Qt.ItemDataRole.UserRole, item.line)
+            self.outline.addItem(entry)
+
+    def _outline_jump(self, item: QListWidgetItem) -> None:
+        editor = self.current_editor()
+        if editor is not None:
+            editor.goto_line(int(item.data(Qt.ItemDataRole.UserRole)))
+            editor.setFocus()
+
+    def _current_changed(self) -> None:
+        self._update_title()
+        editor = self.current_editor()
+        if editor is not None:
+            line, col = editor.caret_line_col()
+            self.cursor_label.setText(f"{line}:{col}")
+            self.live_check()
+
+    # --- autosave and crash recovery -------------------------------------------------------------------------
+    def autosave(self) -> None:
+        for editor in self.editors():
+            if editor.document().isModified():
+                self.recovery.store(editor, editor.property("path") or "", editor.toPlainText())
+
+    def recover(self) -> int:
+        """Reopen the buffers a crashed session left in the recovery folder; returns how many."""
+        count = 0
+        for original, text in self.recovery.pending():
+            editor = self._add_editor(Path(original).name if original else "Recovered", text,
+                                      Path(original) if original else None)
+            editor.document().setModified(True)
+            count += 1
+        self.recovery.clear()
+        return count
+
+    # --- controller ------------------------------------------------------------------------------------------
+    def _controller_error(self, time_ms: int, number: int, text: str, line) -> None:
+        where = f" (line {line})" if line else ""
+        self.messages.controller(1, f"{text}{where}")
+
+    def _status_changed(self, status) -> None:
+        state = {"idle": "idle", "running": "running", "break": "stopped", "ended": "program ended",
+                 "error": "program ended with an error"}.get(status.program_state, status.program_state)
+        line = f", line {status.line}" if status.line and status.program_state in ("running", "break") else ""
+        error = f" — error {status.error}" if status.error else ""
+        self.controller_label.setText(f"{self.bridge.description}: {state}{line}{error}")
+        self._update_title()
+
+    def _connection_changed(self, state: str) -> None:
+        if state == "lost":
+            self.controller_label.setText("Controller 1: Lost connection")
+            self.messages.ide("Lost connection to controller 1!")
+        elif state == "closed":
+            self.controller_label.setText("Controller: not connected")
+        self._update_title()
+
+    def _update_title(self) -> None:
+        editor = self.current_editor()
+        name = self.tabs.tabText(self.tabs.currentIndex()) if editor is not None else "APOSS"
+        controller = ""
+        if self.bridge.connected:
+            status = self.bridge.last_status
+            controller = " [Controller: 1 embedded]"
+            if status is not None and status.error:
+                controller += f" — error {status.error}"
+        self.setWindowTitle(f"motiontool — {name}{controller}")
 
     def about(self) -> None:
-        QMessageBox.about(self, "About motiontool", f"motiontool {__version__}\nAPOSS IDE for the MCO 305")
+        QMessageBox.about(self, "About motiontool",
+                          f"motiontool {__version__}\nAPOSS IDE for the MCO 305\nCompiler and simulator built in")
+
+
+__all__ = ["MainWindow", "QKeySequence"]

@@ -1,0 +1,74 @@
+"""Qt side of a comms Link: link events arrive on the kernel thread; here they become Qt signals that are
+delivered in the GUI thread (queued), and the controller status is polled for the status bar."""
+
+from __future__ import annotations
+
+from PySide6.QtCore import QObject, QTimer, Signal
+
+from motiontool.comms.link import Link
+from motiontool.comms.protocol import LinkError, LinkEvent, Status
+
+
+class LinkBridge(QObject):
+    printed = Signal(int, str)              # time_ms, text
+    controller_error = Signal(int, int, str, object)  # time_ms, number, text, line
+    program_event = Signal(int, str)        # time_ms, text
+    samples = Signal(object)                # {"signals", "time_ms", "values"}
+    status_changed = Signal(object)         # Status
+    connection_changed = Signal(str)        # "connected" | "lost" | "closed"
+    _event = Signal(object)
+
+    def __init__(self, parent: QObject | None = None, poll_ms: int = 200):
+        super().__init__(parent)
+        self.link: Link | None = None
+        self.description = ""
+        self._event.connect(self._dispatch)  # emitted from the kernel thread → queued into the GUI thread
+        self._timer = QTimer(self)
+        self._timer.setInterval(poll_ms)
+        self._timer.timeout.connect(self.poll)
+        self.last_status: Status | None = None
+
+    @property
+    def connected(self) -> bool:
+        return self.link is not None
+
+    def attach(self, link: Link, description: str) -> None:
+        self.detach()
+        self.link = link
+        self.description = description
+        link.subscribe(self._event.emit)
+        self._timer.start()
+        self.connection_changed.emit("connected")
+        self.poll()
+
+    def detach(self) -> None:
+        if self.link is not None:
+            self.link.unsubscribe(self._event.emit)
+            self.link.close()
+            self.link = None
+            self._timer.stop()
+            self.connection_changed.emit("closed")
+
+    def poll(self) -> None:
+        if self.link is None:
+            return
+        try:
+            status = self.link.status()
+        except LinkError:
+            self._timer.stop()
+            self.connection_changed.emit("lost")
+            return
+        if status != self.last_status:
+            self.last_status = status
+            self.status_changed.emit(status)
+
+    def _dispatch(self, event: LinkEvent) -> None:
+        if event.kind == "print":
+            self.printed.emit(event.time_ms, event.text)
+        elif event.kind == "error":
+            self.controller_error.emit(event.time_ms, event.number, event.text, event.line)
+        elif event.kind == "program":
+            self.program_event.emit(event.time_ms, event.text)
+            self.poll()
+        elif event.kind == "samples":
+            self.samples.emit(event.data)

@@ -1,0 +1,156 @@
+"""Development menu (DG 2366-2607): Execute, Break, Continue, Syntax Check, Compile to file, Command List.
+
+Everything that touches a controller goes through the window's LinkBridge (a comms Link)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from PySide6.QtWidgets import QFileDialog, QMessageBox
+
+from motiontool.aposs.driver import CompileResult, compile_source
+from motiontool.comms.embedded import EmbeddedLink
+from motiontool.comms.protocol import LinkError
+from motiontool.fileio import atomic_write_bytes
+
+DEFAULT_CONTROLLER = ("embedded", 1)
+
+
+@dataclass
+class CheckOutcome:
+    result: CompileResult
+    first_error: tuple[int, int] | None
+
+
+class Development:
+    """The Development commands of one main window."""
+
+    def __init__(self, window) -> None:
+        self.w = window
+
+    # --- connection ----------------------------------------------------------------------------------
+    def connect_default(self) -> bool:
+        """DG 2054-2062: commands that need a controller connect to the default one first."""
+        bridge = self.w.bridge
+        if bridge.connected:
+            return True
+        try:
+            link = EmbeddedLink(realtime_factor=self.w.realtime_factor)
+        except Exception as exc:  # noqa: BLE001 - any failure to open a link is reported, not raised
+            self.w.messages.ide(f"Connection to controller 1 failed: {exc}")
+            return False
+        bridge.attach(link, "Controller 1: simulated MCO 305 (embedded)")
+        self.w.messages.ide("Connected to controller 1 (embedded simulator)")
+        return True
+
+    # --- compile ---------------------------------------------------------------------------------------
+    def compile_current(self, debug: bool = False) -> CheckOutcome | None:
+        editor = self.w.current_editor()
+        if editor is None:
+            return None
+        path = editor.property("path") or None
+        name = Path(path).name if path else (editor.property("sample") or "Untitled.m")
+        result = compile_source(editor.toPlainText(), path or name, debug=debug, name=Path(name).stem)
+        self.w.show_diagnostics(editor, result)
+        first = next(((d.loc.line, d.loc.col) for d in result.errors), None)
+        return CheckOutcome(result, first)
+
+    def syntax_check(self) -> bool:
+        """F4 (DG 2479-2483): test-compile; messages name line and text; the caret goes to the error."""
+        outcome = self.compile_current()
+        if outcome is None:
+            return False
+        messages = self.w.messages
+        for d in outcome.result.diagnostics:
+            messages.ide(d.format())
+        if outcome.result.ok:
+            warnings = len(outcome.result.diagnostics)
+            messages.ide("Syntax check: no errors" + (f", {warnings} warning(s)" if warnings else ""))
+            return True
+        messages.ide(f"Syntax check: {len(outcome.result.errors)} error(s)")
+        self.w.current_editor().goto_line(*outcome.first_error)
+        return False
+
+    def compile_to_file(self, target: Path | None = None) -> bool:
+        outcome = self.compile_current()
+        if outcome is None or not outcome.result.ok:
+            if outcome is not None:
+                for d in outcome.result.errors:
+                    self.w.messages.ide(d.format())
+            return False
+        if target is None:
+            editor = self.w.current_editor()
+            default = Path(editor.property("path") or "program.m").with_suffix(".bin")
+            chosen, _ = QFileDialog.getSaveFileName(self.w, "Compile to file", str(default),
+                                                    "Program image (*.bin)")
+            if not chosen:
+                return False
+            target = Path(chosen)
+        atomic_write_bytes(target, outcome.result.image.to_bytes())
+        self.w.messages.ide(f"Compiled to {target}")
+        return True
+
+    # --- run -------------------------------------------------------------------------------------------
+    def execute(self, ask: bool = True) -> bool:
+        """F5 (DG 2380-2391): connect, stop a running program (after asking), compile, download to temporary
+        memory, start."""
+        if not self.connect_default():
+            return False
+        link = self.w.bridge.link
+        try:
+            state = link.status().program_state
+            if state == "running":
+                if ask and QMessageBox.question(self.w, "Execute", "The controller is executing a program. "
+                                                "Stop it?") != QMessageBox.StandardButton.Yes:
+                    return False
+                link.break_program()
+            outcome = self.compile_current()
+            if outcome is None:
+                return False
+            if not outcome.result.ok:
+                for d in outcome.result.diagnostics:
+                    self.w.messages.ide(d.format())
+                self.w.messages.ide("Compilation error(s): program not executed")
+                self.w.current_editor().goto_line(*outcome.first_error)
+                return False
+            image = outcome.result.image
+            link.download(image.to_bytes(), name=image.name)
+            link.start()
+        except LinkError as exc:
+            self.w.messages.ide(f"Controller 1: {exc}")
+            return False
+        self.w.messages.ide(f"Executing {image.name} on controller 1")
+        return True
+
+    def break_program(self) -> None:
+        """Esc (DG 2054-2062): without a controller it connects; with one it aborts the running program."""
+        if not self.w.bridge.connected:
+            self.connect_default()
+            return
+        try:
+            self.w.bridge.link.break_program()
+        except LinkError as exc:
+            self.w.messages.ide(f"Controller 1: {exc}")
+
+    def continue_program(self) -> None:
+        if self.connect_default():
+            try:
+                self.w.bridge.link.continue_program()
+            except LinkError as exc:
+                self.w.messages.ide(f"Controller 1: {exc}")
+
+    def execute_line(self, line: str) -> None:
+        """Command List → Execute now: the line runs as a one-line temporary program."""
+        if not self.connect_default():
+            return
+        result = compile_source(line + "\n", "command.m")
+        if not result.ok:
+            for d in result.errors:
+                self.w.messages.ide(d.format())
+            return
+        try:
+            self.w.bridge.link.download(result.image.to_bytes(), name="command")
+            self.w.bridge.link.start()
+        except LinkError as exc:
+            self.w.messages.ide(f"Controller 1: {exc}")

@@ -1,0 +1,178 @@
+"""The main window's menus with the manual's entries and shortcuts (ide-spec 1.26-1.50, 2.14-2.15).
+
+Entries whose feature does not exist yet are shown disabled, so the structure users know is visible."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from PySide6.QtGui import QKeySequence
+from PySide6.QtWidgets import QFileDialog, QMenu
+
+from motiontool.resources import resources_path
+
+
+def _samples() -> list[str]:
+    return sorted(p.name for p in resources_path("samples").glob("*.m"))
+
+
+def build_menus(w) -> None:
+    ed = w.current_editor
+    dev = w.development
+
+    def on_editor(method: str, *args):
+        def run():
+            editor = ed()
+            if editor is not None:
+                getattr(editor, method)(*args)
+        return run
+
+    menus = [
+        ("&File", [
+            ("&New", "Ctrl+N", w.new_file), ("&Open...", "Ctrl+O", w.open_dialog), ("Recent &Files", None, "recent"),
+            ("&Close", None, w.close_tab), ("&Save", "Ctrl+S", lambda: w.save()), ("Save &as...", None, w.save_as),
+            None, ("&Print...", "Ctrl+P", lambda: _print(w)), ("Print set&up...", None, None), None,
+            ("Sa&mple", None, "samples"), None, ("E&xit Program", None, w.close),
+        ]),
+        ("&Edit", [
+            ("&Undo", "Ctrl+Z", on_editor("undo")), ("&Redo", "Ctrl+Shift+Z", on_editor("redo")),
+            ("Cu&t", "Ctrl+X", on_editor("cut")), ("&Copy", "Ctrl+C", on_editor("copy")),
+            ("&Paste", "Ctrl+V", on_editor("paste")), None,
+            ("&Find...", "Ctrl+F", on_editor("show_find_dialog")),
+            ("&Replace...", "Ctrl+R", on_editor("show_replace_dialog")),
+            ("Find in F&iles...", None, on_editor("show_find_in_files")), None,
+            ("Next Bookmark", "F2", on_editor("next_bookmark")),
+            ("Previous Bookmark", "Shift+F2", on_editor("previous_bookmark")),
+            ("Toggle Bookmark", "Ctrl+F2", on_editor("toggle_bookmark")),
+            ("Clear All Bookmarks", None, on_editor("clear_bookmarks")), None,
+            ("Convert Tabs", None, on_editor("convert_tabs")),
+        ]),
+        ("&Development", [
+            ("&Execute", "F5", lambda: dev.execute()), ("&Break", "Esc", dev.break_program),
+            ("C&ontinue", None, dev.continue_program), None, ("Messages", None, "messages"), None,
+            ("Prepare Singlestep", None, None), ("Go", None, None), ("Singlestep", "F9", None),
+            ("End Debug", None, None), None, ("Watch Add", None, None), ("Watch Start", None, None),
+            ("Watch Stop", None, None), None, ("&Syntax Check", "F4", dev.syntax_check),
+            ("Compile to file...", None, lambda: dev.compile_to_file()), None,
+            ("Break all", None, dev.break_program), ("Start all", None, None), ("Download all", None, None),
+            ("Delete Programs all", None, None), None, ("Select Controller...", None, lambda: _select_controller(w)),
+            ("Close Interface", None, w.bridge.detach), ("Close All Interfaces", None, w.bridge.detach), None,
+            ("Command List...", "F12", lambda: _command_list(w)),
+        ]),
+        ("&Controller", [
+            ("&Programs...", None, None), ("P&arameters", None, None), ("&Memory", None, None),
+            ("&Reset", None, None), None, ("Error &History...", None, lambda: _error_history(w)),
+            ("&Diagnostic Report...", None, None),
+        ]),
+        ("&Tools", [("&CAM-Editor", None, None), ("&Array Editor", None, None), ("&Oscilloscope", None, None)]),
+        ("&Settings", [
+            ("&Editor...", None, None), ("&Compiler...", None, None), ("&Options...", None, None),
+            ("&Interface...", None, lambda: _select_controller(w)), ("&Language...", None, None),
+        ]),
+        ("&Window", [("&Cascade", None, None), ("Tile &vertically", None, None), ("Tile &horizontally", None, None)]),
+        ("&Help", [
+            ("&Contents", "F1", None), ("&Index", None, None), ("&SDO Dictionary", "F11", None), None,
+            ("&About Program", None, w.about),
+        ]),
+    ]
+    for title, entries in menus:
+        menu = w.menuBar().addMenu(title)
+        for entry in entries:
+            if entry is None:
+                menu.addSeparator()
+                continue
+            text, shortcut, slot = entry
+            if slot == "samples":
+                sub = menu.addMenu(text)
+                for name in _samples():
+                    sub.addAction(name, lambda n=name: w.open_sample(n))
+                w.samples_menu = sub
+                continue
+            if slot == "recent":
+                w.recent_menu = menu.addMenu(text)
+                fill_recent_menu(w)
+                continue
+            if slot == "messages":
+                _messages_menu(w, menu.addMenu(text))
+                continue
+            action = menu.addAction(text)
+            if shortcut:
+                action.setShortcut(QKeySequence(shortcut))
+            if slot is None:
+                action.setEnabled(False)  # not built yet; the entry shows where it will be
+            else:
+                action.triggered.connect(lambda _checked=False, s=slot: s())
+            w.actions_by_text[text.replace("&", "")] = action
+
+
+def fill_recent_menu(w) -> None:
+    menu: QMenu = w.recent_menu
+    menu.clear()
+    for path in w.recent_files():
+        menu.addAction(path, lambda p=path: w.open_file(Path(p)))
+    menu.setEnabled(bool(w.recent_files()))
+
+
+def _messages_menu(w, menu: QMenu) -> None:
+    """Development → Messages ▸ Log file / Stop logging / Update Log file (DG 2420-2426)."""
+    start = menu.addAction("Log file...")
+    stop = menu.addAction("Stop logging")
+    update = menu.addAction("Update Log file")
+
+    def refresh() -> None:
+        stop.setEnabled(w.messages.logging)
+        update.setEnabled(w.messages.logging)
+
+    def choose() -> None:
+        chosen, _ = QFileDialog.getSaveFileName(w, "Log file", "messages.log", "Log files (*.log *.txt)")
+        if chosen:
+            w.messages.start_log(Path(chosen))
+        refresh()
+
+    start.triggered.connect(choose)
+    stop.triggered.connect(lambda: (w.messages.stop_log(), refresh()))
+    update.triggered.connect(w.messages.update_log)
+    refresh()
+
+
+def _command_list(w) -> None:
+    from motiontool.ui.command_list import CommandListDialog
+
+    dialog = CommandListDialog(w)
+    dialog.insert_requested.connect(lambda line: ed.insertPlainText(line) if (ed := w.current_editor()) else None)
+    dialog.execute_requested.connect(w.development.execute_line)
+    w.command_list = dialog
+    dialog.show()
+
+
+def _select_controller(w) -> None:
+    from motiontool.ui.interface_dialog import InterfaceDialog
+
+    dialog = InterfaceDialog(w)
+    if dialog.exec():
+        w.development.connect_default()
+
+
+def _error_history(w) -> None:
+    from PySide6.QtWidgets import QMessageBox
+
+    if not w.development.connect_default():
+        return
+    history = w.bridge.link.call("error_history")
+    lines = [f"{e['time_ms']:>8} ms  error {e['number']}: {e['text']}" + (f" (line {e['line']})" if e["line"] else "")
+             for e in history] or ["no errors since power-up"]
+    QMessageBox.information(w, "Error History", "\n".join(lines))
+
+
+def _print(w) -> None:
+    editor = w.current_editor()
+    if editor is None:
+        return
+    try:
+        from PySide6.QtPrintSupport import QPrintDialog, QPrinter
+    except ImportError:  # the Essentials wheel may lack print support on some platforms
+        w.messages.ide("Printing is not available in this Qt installation")
+        return
+    printer = QPrinter()
+    if QPrintDialog(printer, w).exec():
+        editor.print_(printer)
