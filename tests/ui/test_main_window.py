@@ -129,3 +129,20 @@ def test_without_display_the_gui_explains_what_to_do(tmp_path):
                           timeout=60, env=env)
     assert proc.returncode == 1
     assert "no display" in proc.stderr and "offscreen" in proc.stderr and "check" in proc.stderr
+
+
+def test_open_last_file_option_and_editor_settings(window, tmp_path, qtbot):
+    """DG 3156-3230: Options → Open last file; DG 3117-3150: editor tab size and colours persist."""
+    program = tmp_path / "last.m"
+    program.write_text("x = 1\n")
+    window.open_file(program)
+    window.actions_by_text["Open last file"].setChecked(True)
+    from motiontool.ui.editor.settings import EditorSettings
+
+    window.set_editor_settings(EditorSettings(tab_size=2))
+    again = MainWindow(settings=window.settings)
+    again.ask_to_save = False
+    qtbot.addWidget(again)
+    editor = again.open_last_file()
+    assert editor is not None and editor.toPlainText() == "x = 1\n"
+    assert again.editor_settings().tab_size == 2

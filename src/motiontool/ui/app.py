@@ -45,8 +45,16 @@ def run_gui(open_file: Path | None = None, screenshot: Path | None = None) -> in
         except OSError as exc:
             sys.stderr.write(f"motiontool: cannot open {open_file}: {exc.strerror}\n")
             return 1
-    else:
+    elif window.open_last_file() is None:
         window.new_file()
+    if screenshot is None and window.recovery.pending():
+        from PySide6.QtWidgets import QMessageBox
+
+        if QMessageBox.question(window, "Recovery", "motiontool was not closed properly. Restore the unsaved "
+                                "programs?") == QMessageBox.StandardButton.Yes:
+            window.recover()
+        else:
+            window.recovery.clear()
     window.show()
     if screenshot is None:
         return app.exec()

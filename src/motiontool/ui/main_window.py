@@ -141,8 +141,34 @@ class MainWindow(QMainWindow):
         editor.setProperty("sample", name)
         return editor
 
+    def editor_settings(self):
+        from motiontool.ui.editor.settings import EditorColors, EditorSettings
+
+        s = self.settings
+        colors = s.value("editor/colors", None)
+        try:
+            return EditorSettings(tab_size=int(s.value("editor/tab_size", 4)),
+                                  convert_tabs_while_typing=s.value("editor/convert_tabs", False, type=bool),
+                                  colors=EditorColors.from_dict(dict(colors)) if colors else EditorColors())
+        except (ValueError, TypeError):  # a damaged settings file falls back to the defaults
+            return EditorSettings()
+
+    def set_editor_settings(self, settings) -> None:
+        self.settings.setValue("editor/tab_size", settings.tab_size)
+        self.settings.setValue("editor/convert_tabs", settings.convert_tabs_while_typing)
+        self.settings.setValue("editor/colors", settings.colors.to_dict())
+        for editor in self.editors():
+            editor.apply_settings(settings)
+
+    def open_last_file(self) -> CodeEditor | None:
+        """Settings → Options → Open last file: reopen the most recently used file at start-up."""
+        last = self.settings.value("last_file", "")
+        if self.settings.value("options/open_last_file", False, type=bool) and last and Path(last).is_file():
+            return self.open_file(Path(last))
+        return None
+
     def _add_editor(self, title: str, text: str, path: Path | None) -> CodeEditor:
-        editor = CodeEditor(self)
+        editor = CodeEditor(self, settings=self.editor_settings())
         editor.setPlainText(text)
         editor.mark_saved()
         editor.setProperty("path", str(path) if path else "")

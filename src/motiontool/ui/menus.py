@@ -66,7 +66,8 @@ def build_menus(w) -> None:
         ]),
         ("&Tools", [("&CAM-Editor", None, None), ("&Array Editor", None, None), ("&Oscilloscope", None, None)]),
         ("&Settings", [
-            ("&Editor...", None, None), ("&Compiler...", None, None), ("&Options...", None, None),
+            ("&Editor...", None, lambda: _editor_settings(w)), ("&Compiler...", None, None),
+            ("Open last file", None, "open_last"),
             ("&Interface...", None, lambda: _select_controller(w)), ("&Language...", None, None),
         ]),
         ("&Window", [("&Cascade", None, None), ("Tile &vertically", None, None), ("Tile &horizontally", None, None)]),
@@ -91,6 +92,13 @@ def build_menus(w) -> None:
             if slot == "recent":
                 w.recent_menu = menu.addMenu(text)
                 fill_recent_menu(w)
+                continue
+            if slot == "open_last":  # Settings → Options: open the last file at start-up (DG 3156-3230)
+                action = menu.addAction(text)
+                action.setCheckable(True)
+                action.setChecked(w.settings.value("options/open_last_file", False, type=bool))
+                action.toggled.connect(lambda on: w.settings.setValue("options/open_last_file", on))
+                w.actions_by_text[text] = action
                 continue
             if slot == "messages":
                 _messages_menu(w, menu.addMenu(text))
@@ -133,6 +141,15 @@ def _messages_menu(w, menu: QMenu) -> None:
     stop.triggered.connect(lambda: (w.messages.stop_log(), refresh()))
     update.triggered.connect(w.messages.update_log)
     refresh()
+
+
+def _editor_settings(w) -> None:
+    """Settings → Editor (DG 3117-3150): colours, tab size, convert tabs; kept in the settings file."""
+    from motiontool.ui.editor.settings_dialog import EditorSettingsDialog
+
+    dialog = EditorSettingsDialog(w.editor_settings(), w)
+    if dialog.exec():
+        w.set_editor_settings(dialog.settings())
 
 
 def _command_list(w) -> None:
