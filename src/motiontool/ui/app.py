@@ -38,7 +38,16 @@ def run_gui(open_file: Path | None = None, screenshot: Path | None = None) -> in
     app = QApplication.instance() or QApplication(sys.argv[:1])
     app.setApplicationName("motiontool")
     app.setOrganizationName("motiontool")
-    window = MainWindow()
+    if screenshot is not None:  # a screenshot is reproducible: default settings, default size
+        import tempfile
+
+        from PySide6.QtCore import QSettings
+
+        scratch = tempfile.TemporaryDirectory()
+        window = MainWindow(settings=QSettings(f"{scratch.name}/settings.ini", QSettings.Format.IniFormat))
+        window.ask_to_save = False
+    else:
+        window = MainWindow()
     if open_file is not None:
         try:
             window.open_file(open_file)
@@ -55,9 +64,12 @@ def run_gui(open_file: Path | None = None, screenshot: Path | None = None) -> in
             window.recover()
         else:
             window.recovery.clear()
+    window.development.connect_default()  # the IDE starts on the embedded simulated controller
     window.show()
     if screenshot is None:
-        return app.exec()
+        code = app.exec()
+        window.bridge.detach()
+        return code
 
     result = {"code": 1}
 
@@ -72,4 +84,5 @@ def run_gui(open_file: Path | None = None, screenshot: Path | None = None) -> in
     # Grab after the event loop has run a few paint cycles so the picture is complete.
     QTimer.singleShot(300, grab)
     app.exec()
+    window.bridge.detach()
     return result["code"]
