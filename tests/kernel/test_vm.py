@@ -211,3 +211,10 @@ def test_instruction_budget_lets_a_busy_loop_share_time():
     run = run_source("t = TIME\ni = 0\nWHILE i < 100000 DO\ni++\nENDWHILE\nPRINT TIME - t\n", 5000)
     elapsed = int(run.prints[0])
     assert 1000 < elapsed < 3000
+
+
+def test_out_on_a_connector_pin():
+    """CR 3152-3155: OUT X59/3 1 sets output 3; an unknown connector is error 171 (CR 3127-3128)."""
+    run = run_source("OUT X59/3 1\nPRINT IN 1\nOUT X34/9 1\n", 100)
+    assert run.controller.io.outputs[3] == 1
+    assert run.errors[0].number == 171

@@ -319,9 +319,19 @@ def _posdiff(now: int, old: int) -> int:
 
 
 # --- I/O -------------------------------------------------------------------------------------------------
+def _pin(number):
+    """OUT X59/3 1: connector pins of the MCO map to output numbers; other connectors are unknown (171)."""
+    if isinstance(number, str):
+        connector, _, pin = number.partition("/")
+        if connector == "X59" and pin.isdigit():
+            return int(pin)
+        raise ControllerError(171, f"connector pin {number} is not valid")  # CR 3127-3128
+    return number
+
+
 @command("IN")
 def in_(ctl, vm, args):
-    return ctl.io.read(args[0])
+    return ctl.io.read(_pin(args[0]))
 
 
 @command("INB")
@@ -336,7 +346,7 @@ def inad(ctl, vm, args):
 
 @command("OUT")
 def out(ctl, vm, args):
-    ctl.io.write(args[0], args[1])
+    ctl.io.write(_pin(args[0]), args[1])
 
 
 @command("OUTB")
@@ -366,16 +376,19 @@ def set_(ctl, vm, args):
     ctl.params.set(args[0], args[1])
 
 
+PID_DEFAULTS = {"KPROP": 0, "KDER": 0, "KINT": 0, "KILIM": 0, "TIMER": 1}
+
+
 @command("SET PID")
 def set_pid(ctl, vm, args):
-    ctl.pid_gains = getattr(ctl, "pid_gains", {"KPROP": 0, "KDER": 0, "KINT": 0, "KILIM": 0, "TIMER": 1})
+    ctl.pid_gains = getattr(ctl, "pid_gains", dict(PID_DEFAULTS))
     ctl.pid_gains[args[0]] = args[1]
 
 
 @command("PID")
 def pid(ctl, vm, args):
     """CR 3409-3444: u(n) = (KP·e(n) + KD·(e(n) − e(n−1)) + KI·Σe) / timer, Σe limited by KILIM."""
-    g = getattr(ctl, "pid_gains", {"KPROP": 0, "KDER": 0, "KINT": 0, "KILIM": 0, "TIMER": 1})
+    g = getattr(ctl, "pid_gains", PID_DEFAULTS)
     e = args[0]
     state = getattr(ctl, "pid_state", [0, 0])
     last, total = state

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 from typing import Any, Protocol
 
 from motiontool.aposs import semantics
-from motiontool.aposs.image import MATH_FUNCTIONS, SELECTOR_CODES, BinOp, CommandCall, Op, ProgramImage
+from motiontool.aposs.image import MATH_FUNCTIONS, OPERATOR_OF, SELECTOR_CODES, CommandCall, Op, ProgramImage
 from motiontool.kernel.errors import ControllerError
 
 MAX_GOSUB_DEPTH = 10     # DG 11650-11658: error 151
@@ -404,12 +404,7 @@ class VM:
             raise ControllerError(156, str(exc)) from None
 
 
-_BINOPS = {int(op): name for name, op in [("+", BinOp.ADD), ("-", BinOp.SUB), ("*", BinOp.MUL), ("%", BinOp.DIV),
-                                          ("MOD", BinOp.MOD), ("RND", BinOp.RND), ("&", BinOp.AND), ("|", BinOp.OR),
-                                          ("^", BinOp.XOR), ("<<", BinOp.SHL), (">>", BinOp.SHR), ("==", BinOp.EQ),
-                                          ("!=", BinOp.NE), ("<", BinOp.LT), ("<=", BinOp.LE), (">", BinOp.GT),
-                                          (">=", BinOp.GE), ("AND", BinOp.LAND), ("OR", BinOp.LOR),
-                                          ("EXP", BinOp.POW)]}
+_BINOPS = OPERATOR_OF  # BinOp code → operator name of semantics.py
 
 
 def _size(dims: list[int]) -> int:
