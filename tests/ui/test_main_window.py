@@ -23,7 +23,8 @@ def window(qtbot, tmp_path):
     yield w
     for editor in w.editors():  # no "Save changes?" question at teardown
         editor.document().setModified(False)
-    w.bridge.detach()
+    w.bridge.detach(close=False)
+    w.controllers.close()
 
 
 def test_menu_bar_has_the_aposs_menus(window):
@@ -146,3 +147,19 @@ def test_open_last_file_option_and_editor_settings(window, tmp_path, qtbot):
     editor = again.open_last_file()
     assert editor is not None and editor.toPlainText() == "x = 1\n"
     assert again.editor_settings().tab_size == 2
+
+
+def test_run_in_several_controllers_and_break_all(window, qtbot):
+    """DG 2393-2404, 2504-2518: Execute on controller 1, Select Controller 2 (1 keeps running), Execute
+    again; Break all stops both; messages carry the controller ID."""
+    editor = window.new_file()
+    editor.setPlainText('PRINT "go"\nmain:\nDELAY 10\nGOTO main\n')
+    assert window.development.execute(ask=False)
+    assert window.development.select_controller(2)
+    assert window.development.execute(ask=False)
+    qtbot.waitUntil(lambda: "[02] go" in window.messages.toPlainText(), timeout=5000)
+    links = dict(window.controllers.open_links())
+    assert {links[1].status().program_state, links[2].status().program_state} == {"running"}
+    window.development.break_all()
+    assert {links[1].status().program_state, links[2].status().program_state} == {"break"}
+    assert "[01] go" in window.messages.toPlainText()

@@ -68,7 +68,7 @@ def run_gui(open_file: Path | None = None, screenshot: Path | None = None) -> in
     window.show()
     if screenshot is None:
         code = app.exec()
-        window.bridge.detach()
+        window.controllers.close()
         return code
 
     result = {"code": 1}
@@ -84,5 +84,5 @@ def run_gui(open_file: Path | None = None, screenshot: Path | None = None) -> in
     # Grab after the event loop has run a few paint cycles so the picture is complete.
     QTimer.singleShot(300, grab)
     app.exec()
-    window.bridge.detach()
+    window.controllers.close()
     return result["code"]

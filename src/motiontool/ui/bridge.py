@@ -10,9 +10,9 @@ from motiontool.comms.protocol import LinkError, LinkEvent, Status
 
 
 class LinkBridge(QObject):
-    printed = Signal(int, str)              # time_ms, text
-    controller_error = Signal(int, int, str, object)  # time_ms, number, text, line
-    program_event = Signal(int, str)        # time_ms, text
+    printed = Signal(int, str, int)         # time_ms, text, controller ID
+    controller_error = Signal(int, int, str, object, int)  # time_ms, number, text, line, controller ID
+    program_event = Signal(int, str, int)   # time_ms, text, controller ID
     samples = Signal(object)                # {"signals", "time_ms", "values"}
     status_changed = Signal(object)         # Status
     connection_changed = Signal(str)        # "connected" | "lost" | "closed"
@@ -22,6 +22,8 @@ class LinkBridge(QObject):
         super().__init__(parent)
         self.link: Link | None = None
         self.description = ""
+        self.controller_id = 1
+        self._callback = None
         self._event.connect(self._dispatch)  # emitted from the kernel thread → queued into the GUI thread
         self._timer = QTimer(self)
         self._timer.setInterval(poll_ms)
@@ -32,19 +34,24 @@ class LinkBridge(QObject):
     def connected(self) -> bool:
         return self.link is not None
 
-    def attach(self, link: Link, description: str) -> None:
-        self.detach()
+    def attach(self, link: Link, description: str, controller_id: int = 1) -> None:
+        self.detach(close=False)
         self.link = link
         self.description = description
-        link.subscribe(self._event.emit)
+        self.controller_id = controller_id
+        # Events are tagged with the controller they came from: after a switch, queued ones keep their ID.
+        self._callback = lambda event, cid=controller_id: self._event.emit((cid, event))
+        link.subscribe(self._callback)
         self._timer.start()
         self.connection_changed.emit("connected")
         self.poll()
 
-    def detach(self) -> None:
+    def detach(self, close: bool = True) -> None:
+        """Let go of the controller; with close=False its link stays open and its program keeps running."""
         if self.link is not None:
-            self.link.unsubscribe(self._event.emit)
-            self.link.close()
+            self.link.unsubscribe(self._callback)
+            if close:
+                self.link.close()
             self.link = None
             self._timer.stop()
             self.connection_changed.emit("closed")
@@ -56,19 +63,23 @@ class LinkBridge(QObject):
             status = self.link.status()
         except LinkError:
             self._timer.stop()
+            self.link.unsubscribe(self._callback)
+            self.link = None  # the next command that needs the controller reconnects (DG 2064-2066)
             self.connection_changed.emit("lost")
             return
         if status != self.last_status:
             self.last_status = status
             self.status_changed.emit(status)
 
-    def _dispatch(self, event: LinkEvent) -> None:
+    def _dispatch(self, tagged: tuple[int, LinkEvent]) -> None:
+        cid, event = tagged
         if event.kind == "print":
-            self.printed.emit(event.time_ms, event.text)
+            self.printed.emit(event.time_ms, event.text, cid)
         elif event.kind == "error":
-            self.controller_error.emit(event.time_ms, event.number, event.text, event.line)
+            self.controller_error.emit(event.time_ms, event.number, event.text, event.line, cid)
         elif event.kind == "program":
-            self.program_event.emit(event.time_ms, event.text)
-            self.poll()
+            self.program_event.emit(event.time_ms, event.text, cid)
+            if cid == self.controller_id:
+                self.poll()
         elif event.kind == "samples":
             self.samples.emit(event.data)

@@ -10,7 +10,6 @@ from pathlib import Path
 from PySide6.QtWidgets import QFileDialog, QMessageBox
 
 from motiontool.aposs.driver import CompileResult, compile_source
-from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.protocol import LinkError
 from motiontool.fileio import atomic_write_bytes
 
@@ -31,18 +30,40 @@ class Development:
 
     # --- connection ----------------------------------------------------------------------------------
     def connect_default(self) -> bool:
-        """DG 2054-2062: commands that need a controller connect to the default one first."""
-        bridge = self.w.bridge
-        if bridge.connected:
+        """DG 2054-2062: commands that need a controller connect first — to the controller this window had
+        (after a lost connection, DG 2064-2066), else to the default one."""
+        if self.w.bridge.connected:
             return True
+        return self.select_controller(self.w.bridge.controller_id)
+
+    def select_controller(self, controller_id: int) -> bool:
+        """Select Controller (DG 2536-2546): the window moves to another controller; the one it leaves keeps
+        running its program."""
         try:
-            link = EmbeddedLink(realtime_factor=self.w.realtime_factor)
+            link = self.w.controllers.link(controller_id)
         except Exception as exc:  # noqa: BLE001 - any failure to open a link is reported, not raised
-            self.w.messages.ide(f"Connection to controller 1 failed: {exc}")
+            self.w.messages.ide(f"Connection to controller {controller_id} failed: {exc}")
             return False
-        bridge.attach(link, "Controller 1: simulated MCO 305 (embedded)")
-        self.w.messages.ide("Connected to controller 1 (embedded simulator)")
+        self.w.bridge.attach(link, f"Controller {controller_id}: simulated MCO 305 (embedded)", controller_id)
+        self.w.messages.ide(f"Connected to controller {controller_id} (embedded simulator)")
         return True
+
+    def break_all(self) -> None:
+        """Break all (DG 2504-2514): abort the programs on every controller of this interface."""
+        for cid, link in self.w.controllers.open_links():
+            try:
+                link.break_program()
+            except LinkError as exc:
+                self.w.messages.ide(f"Controller {cid}: {exc}")
+
+    def start_all(self) -> None:
+        """Start all (DG 2516-2518): start the downloaded program on every connected controller."""
+        for cid, link in self.w.controllers.open_links():
+            try:
+                if link.status().program_state != "running":
+                    link.start()
+            except LinkError as exc:
+                self.w.messages.ide(f"Controller {cid}: {exc}")
 
     # --- compile ---------------------------------------------------------------------------------------
     def compile_current(self, debug: bool = False) -> CheckOutcome | None:
@@ -118,9 +139,9 @@ class Development:
             link.download(image.to_bytes(), name=image.name)
             link.start()
         except LinkError as exc:
-            self.w.messages.ide(f"Controller 1: {exc}")
+            self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: {exc}")
             return False
-        self.w.messages.ide(f"Executing {image.name} on controller 1")
+        self.w.messages.ide(f"Executing {image.name} on controller {self.w.bridge.controller_id}")
         return True
 
     def break_program(self) -> None:

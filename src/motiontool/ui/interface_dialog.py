@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from PySide6.QtWidgets import QDialog, QDialogButtonBox, QLabel, QListWidget, QListWidgetItem, QVBoxLayout
 
-LINK_KINDS = [
-    ("embedded", "Simulated MCO 305 (embedded)", True),
+from motiontool.ui.controllers import SIMULATED_IDS
+
+LINK_KINDS = [(f"embedded:{n}", f"Simulated MCO 305 — controller {n} (embedded)", True) for n in SIMULATED_IDS] + [
     ("fc-serial", "RS-485 FC protocol (serial)", False),
     ("canopen", "CANopen", False),
 ]
@@ -33,3 +34,6 @@ class InterfaceDialog(QDialog):
 
     def selected_kind(self) -> str:
         return self.list.currentItem().data(256)
+
+    def selected_controller(self) -> int:
+        return int(self.selected_kind().split(":")[1])

@@ -45,6 +45,9 @@ class MainWindow(QMainWindow):
         self.setWindowTitle("motiontool — APOSS")
         self.resize(1180, 760)
         self.actions_by_text: dict[str, QAction] = {}
+        from motiontool.ui.controllers import ControllerRegistry
+
+        self.controllers = ControllerRegistry(realtime_factor)
         self.bridge = LinkBridge(self)
         self.development = Development(self)
         self.bookmark_store = BookmarkStore(Path(self._config_dir()) / "bookmarks.json")
@@ -75,9 +78,9 @@ class MainWindow(QMainWindow):
         from motiontool.ui.menus import build_menus
 
         build_menus(self)
-        self.bridge.printed.connect(lambda t, text: self.messages.controller(1, text))
+        self.bridge.printed.connect(lambda t, text, cid: self.messages.controller(cid, text))
         self.bridge.controller_error.connect(self._controller_error)
-        self.bridge.program_event.connect(lambda t, text: self.messages.controller(1, text))
+        self.bridge.program_event.connect(lambda t, text, cid: self.messages.controller(cid, text))
         self.bridge.status_changed.connect(self._status_changed)
         self.bridge.connection_changed.connect(self._connection_changed)
 
@@ -262,7 +265,8 @@ class MainWindow(QMainWindow):
         self.settings.setValue("window/geometry", self.saveGeometry())
         self.settings.setValue("window/state", self.saveState())
         self.messages.stop_log()
-        self.bridge.detach()
+        self.bridge.detach(close=False)
+        self.controllers.close()
         event.accept()
 
     # --- live diagnostics, outline ---------------------------------------------------------------------------
@@ -319,9 +323,9 @@ class MainWindow(QMainWindow):
         return count
 
     # --- controller ------------------------------------------------------------------------------------------
-    def _controller_error(self, time_ms: int, number: int, text: str, line) -> None:
+    def _controller_error(self, time_ms: int, number: int, text: str, line, cid: int) -> None:
         where = f" (line {line})" if line else ""
-        self.messages.controller(1, f"{text}{where}")
+        self.messages.controller(cid, f"{text}{where}")
 
     def _status_changed(self, status) -> None:
         state = {"idle": "idle", "running": "running", "break": "stopped", "ended": "program ended",
@@ -333,8 +337,9 @@ class MainWindow(QMainWindow):
 
     def _connection_changed(self, state: str) -> None:
         if state == "lost":
-            self.controller_label.setText("Controller 1: Lost connection")
-            self.messages.ide("Lost connection to controller 1!")
+            cid = self.bridge.controller_id
+            self.controller_label.setText(f"Controller {cid}: Lost connection")
+            self.messages.ide(f"Lost connection to controller {cid}!")
         elif state == "closed":
             self.controller_label.setText("Controller: not connected")
         self._update_title()
@@ -345,7 +350,7 @@ class MainWindow(QMainWindow):
         controller = ""
         if self.bridge.connected:
             status = self.bridge.last_status
-            controller = " [Controller: 1 embedded]"
+            controller = f" [Controller: {self.bridge.controller_id} embedded]"
             if status is not None and status.error:
                 controller += f" — error {status.error}"
         self.setWindowTitle(f"motiontool — {name}{controller}")

@@ -54,9 +54,10 @@ def build_menus(w) -> None:
             ("End Debug", None, None), None, ("Watch Add", None, None), ("Watch Start", None, None),
             ("Watch Stop", None, None), None, ("&Syntax Check", "F4", dev.syntax_check),
             ("Compile to file...", None, lambda: dev.compile_to_file()), None,
-            ("Break all", None, dev.break_program), ("Start all", None, None), ("Download all", None, None),
+            ("Break all", None, dev.break_all), ("Start all", None, dev.start_all), ("Download all", None, None),
             ("Delete Programs all", None, None), None, ("Select Controller...", None, lambda: _select_controller(w)),
-            ("Close Interface", None, w.bridge.detach), ("Close All Interfaces", None, w.bridge.detach), None,
+            ("Close Interface", None, lambda: (w.controllers.close(w.bridge.controller_id), w.bridge.detach())),
+            ("Close All Interfaces", None, lambda: (w.controllers.close(), w.bridge.detach())), None,
             ("Command List...", "F12", lambda: _command_list(w)),
         ]),
         ("&Controller", [
@@ -167,7 +168,7 @@ def _select_controller(w) -> None:
 
     dialog = InterfaceDialog(w)
     if dialog.exec():
-        w.development.connect_default()
+        w.development.select_controller(dialog.selected_controller())
 
 
 def _error_history(w) -> None:
