@@ -60,7 +60,12 @@ def run_program(path: Path, options: RunOptions, out: TextIO = sys.stdout, err: 
             if not value:
                 print(f"motiontool run: --set needs NAME=VALUE, got '{setting}'", file=err)
                 return EXIT_COMPILE
-            link.write_parameter(key.strip(), int(value, 0))
+            try:
+                number = int(value, 0)
+            except ValueError:
+                print(f"motiontool run: --set {key}: '{value}' is not a whole number", file=err)
+                return EXIT_COMPILE
+            link.write_parameter(key.strip(), number)
         for spec in options.inputs:
             m = _INPUT.match(spec.strip())
             if not m:

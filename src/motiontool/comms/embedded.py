@@ -42,7 +42,13 @@ class EmbeddedLink(Link):
     def _deliver(self, event: LinkEvent) -> None:
         self._publish(event)
 
+    @property
+    def alive(self) -> bool:
+        return not self._stop.is_set() and (self._thread is None or self._thread.is_alive())
+
     def request(self, request: Request) -> Any:
+        if not self.alive:
+            raise LinkError("Lost connection: the simulated controller has stopped")
         if self._thread is None:
             response = self.service.handle(request)
         else:
@@ -67,8 +73,12 @@ class EmbeddedLink(Link):
                 done.put(self.service.handle(request))
             due = int((time.monotonic() - start) * 1000 * self.realtime_factor)
             burst = min(due - ticks, 200)
-            for _ in range(burst):
-                self.service.tick()
+            try:
+                for _ in range(burst):
+                    self.service.tick()
+            except Exception as exc:  # noqa: BLE001 - report it, keep the controller reachable
+                self._publish(LinkEvent("message", self.service.controller.time_ms,
+                                        f"internal simulator fault: {type(exc).__name__}: {exc}"))
             ticks += burst
             if burst < 200:
                 time.sleep(0.002)

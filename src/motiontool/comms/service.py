@@ -88,6 +88,8 @@ class ControllerService:
             return Response(request.id, False, error=str(exc), error_number=exc.number)
         except (ValueError, KeyError, TypeError, IndexError, RuntimeError, ImageError) as exc:
             return Response(request.id, False, error=str(exc))
+        except Exception as exc:  # noqa: BLE001 - a request never takes the controller down
+            return Response(request.id, False, error=f"internal error: {type(exc).__name__}: {exc}")
 
     def op_identify(self) -> dict:
         from motiontool import __version__
@@ -110,11 +112,17 @@ class ControllerService:
     def op_list_arrays(self) -> list[dict]:
         return [{"index": i, "name": a.name, "size": len(a)} for i, a in enumerate(self.controller.arrays.arrays)]
 
+    def _array(self, index):
+        arrays = self.controller.arrays.arrays
+        if not isinstance(index, int) or not 0 <= index < len(arrays):
+            raise ValueError(f"no array {index} (the controller has {len(arrays)})")
+        return arrays[index]
+
     def op_read_array(self, index) -> list:
-        return list(self.controller.arrays.arrays[index].data)
+        return list(self._array(index).data)
 
     def op_write_array(self, index, values) -> None:
-        array = self.controller.arrays.arrays[index]
+        array = self._array(index)
         if len(values) > len(array):
             raise ControllerError(171, f"{len(values)} values for {array.name}[{len(array)}]")
         array.data[:len(values)] = [int(v) for v in values]
@@ -160,7 +168,13 @@ class ControllerService:
 
     def op_stream(self, signals, interval_ms=1) -> None:
         self.flush_stream()
-        self.stream_signals = [(name, signal_reader(name)) for name in signals]
+        readers = [(name, signal_reader(name)) for name in signals]
+        for name, read in readers:  # refuse an unknown signal here, not in the middle of a tick
+            try:
+                read(self.controller)
+            except ControllerError:
+                raise ValueError(f"unknown signal '{name}'") from None
+        self.stream_signals = readers
         self.stream_interval = max(1, int(interval_ms))
 
     def op_read_signals(self, signals) -> list:
@@ -196,7 +210,11 @@ class ControllerService:
         self.controller.continue_program(step=True)
 
     def op_read_variables(self, names) -> list:
-        return [self._variable(name)[0][self._variable(name)[1]] for name in names]
+        values = []
+        for name in names:
+            container, index = self._variable(str(name))
+            values.append(container[index])
+        return values
 
     def op_write_variable(self, name, value) -> None:
         container, index, type_ = self._variable(name, with_type=True)

@@ -175,6 +175,8 @@ class Axis:
         self.homing = None
 
     def motor_off(self) -> None:
+        if self.mode in (POSITIONING, SPEED):  # CONTINUE resumes it after MOTOR ON / ERRCLR (CR 564-578)
+            self.stopped_motion = self.last_motion
         self.control_on = False
         self.profile.hold(float(self.apos))
         self.mode = IDLE
@@ -189,6 +191,7 @@ class Axis:
     def _start(self) -> None:
         self.motor_stop_state = False
         self.posfloat = False
+        self.stopped_motion = None  # a new motion replaces what CONTINUE would have resumed
 
     # --- origins ----------------------------------------------------------------------------------------
     def shift_origin(self, by_qc: int) -> None:

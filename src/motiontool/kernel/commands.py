@@ -70,12 +70,12 @@ def _limits(ctl, vel_value=None, for_stop=False):
 
 
 def _motion_allowed(ctl) -> None:
+    """DG 11444-11456: no motion while an error is pending (105) or before a forced HOME (106). A motion
+    command does not switch the motor on (CR 624-648: CSTART does not imply MOTOR ON)."""
     if ctl.error:
         raise ControllerError(105, f"error {ctl.error} is pending")
     if ctl.params["HOME_FORCE"] == 1 and not ctl.homed:
         raise ControllerError(106)
-    if not ctl.axis.control_on:
-        ctl.axis.motor_on()
 
 
 def _check_soft_limits(ctl, target_qc: int) -> None:
@@ -128,7 +128,7 @@ def dec(ctl, vm, args):
 
 @command("CVEL")
 def cvel(ctl, vm, args):
-    ctl.speed_value = args[0]
+    ctl.program_data.speed_value = args[0]
     if ctl.axis.mode == "speed":  # a new CVEL in speed mode changes the running speed
         ctl.axis.run_at(ctl.axis.scaling.velocity(args[0]), _limits(ctl, args[0]))
 
@@ -136,7 +136,7 @@ def cvel(ctl, vm, args):
 @command("CSTART")
 def cstart(ctl, vm, args):
     _motion_allowed(ctl)
-    v = getattr(ctl, "speed_value", 0)
+    v = ctl.program_data.speed_value
     if ctl.limit_blocked_direction and v * ctl.limit_blocked_direction > 0:
         raise ControllerError(198, "speed mode again in the direction of the violated limit")
     ctl.axis.run_at(ctl.axis.scaling.velocity(v), _limits(ctl, v))
@@ -171,9 +171,11 @@ def continue_(ctl, vm, args):
     motion = ctl.axis.stopped_motion
     if motion is None:
         return None
+    _motion_allowed(ctl)
+    if not ctl.axis.control_on:  # CONTINUE after MOTOR OFF switches the control on again (CR 564-578)
+        ctl.axis.motor_on()
     ctl.axis.stopped_motion = None
     kind, value, limits = motion
-    _motion_allowed(ctl)
     if kind == "position":
         ctl.axis.move_to(value, limits)
         if vm is not None and not vm.effective_nowait:
@@ -190,18 +192,15 @@ def waitax(ctl, vm, args):
 
 @command("HOME", "INDEX")
 def home(ctl, vm, args, index_only=False):
-    if ctl.error:
-        raise ControllerError(105, f"error {ctl.error} is pending")
+    _motion_allowed(ctl)
     p, axis = ctl.params, ctl.axis
-    if not axis.control_on:
-        axis.motor_on()
     home_vel = p["HOME_VEL"]
     if home_vel == 0:
         raise ControllerError(107)
     s = axis.scaling
     ramp = s.acceleration(max(1, p["HOME_RAMP"]))  # DG 9224-9246: ramp time = VELRES / HOME_RAMP × RAMPMIN
     limits = axis.limits(abs(s.velocity(home_vel)), ramp, ramp, 0, (0, 0, 0, 0))
-    functions = iomod.input_functions(p)
+    functions = ctl.input_functions()
     if not index_only and iomod.HOME_SWITCH not in functions:
         raise ControllerError(183, "HOME needs an input with I_FUNCTION 1 or 2 (home switch)")
 
@@ -376,26 +375,21 @@ def set_(ctl, vm, args):
     ctl.params.set(args[0], args[1])
 
 
-PID_DEFAULTS = {"KPROP": 0, "KDER": 0, "KINT": 0, "KILIM": 0, "TIMER": 1}
-
-
 @command("SET PID")
 def set_pid(ctl, vm, args):
-    ctl.pid_gains = getattr(ctl, "pid_gains", dict(PID_DEFAULTS))
-    ctl.pid_gains[args[0]] = args[1]
+    ctl.program_data.pid_gains[args[0]] = args[1]
 
 
 @command("PID")
 def pid(ctl, vm, args):
     """CR 3409-3444: u(n) = (KP·e(n) + KD·(e(n) − e(n−1)) + KI·Σe) / timer, Σe limited by KILIM."""
-    g = getattr(ctl, "pid_gains", PID_DEFAULTS)
+    g = ctl.program_data.pid_gains
     e = args[0]
-    state = getattr(ctl, "pid_state", [0, 0])
-    last, total = state
+    last, total = ctl.program_data.pid_state
     total += e
     if g["KILIM"]:
         total = max(-g["KILIM"], min(g["KILIM"], total))
-    ctl.pid_state = [e, total]
+    ctl.program_data.pid_state = [e, total]
     return int((g["KPROP"] * e + g["KDER"] * (e - last) + g["KINT"] * total) / max(1, g["TIMER"]))
 
 
@@ -404,8 +398,7 @@ def linkgpar(ctl, vm, args):
     number, text, low, high, kind = args
     if not 1900 <= number <= 1999:
         raise ControllerError(155, f"LINKGPAR {number}: only 19-00 … 19-99 can be linked")
-    ctl.linked = getattr(ctl, "linked", {})
-    ctl.linked[number] = (text, low, high, kind)
+    ctl.program_data.linked[number] = (text, low, high, kind)
     value = ctl.params.values.get(number, 0)
     ctl.params.values[number] = max(low, min(high, value))  # clamped to the linked range
 
@@ -469,7 +462,7 @@ def testsettime(ctl, vm, args):
 
 @command("TESTSETDEST")
 def testsetdest(ctl, vm, args):
-    ctl.recorder.array = args[0]
+    ctl.recorder.array = None if args[0] == "DYNMEM" else args[0]
 
 
 @command("TESTSETTYPE")
@@ -489,7 +482,7 @@ def teststop(ctl, vm, args):
 
 @command("PRINTDEV")
 def printdev(ctl, vm, args):
-    ctl.print_device = args[0]
+    ctl.program_data.print_device = args[0]
 
 
 @command("SYSVAR")

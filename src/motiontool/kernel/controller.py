@@ -8,7 +8,7 @@ so the same program and inputs always give the same trace.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from motiontool.aposs.image import CommandCall, ProgramImage
 from motiontool.kernel import io as iomod
@@ -48,6 +48,18 @@ class Event:
 
 
 @dataclass
+class ProgramData:
+    """What a program leaves in the controller and the next program must not inherit (CVEL value, PID
+    function state, LINKGPAR links, print device)."""
+
+    speed_value: int = 0
+    pid_gains: dict = field(default_factory=lambda: {"KPROP": 0, "KDER": 0, "KINT": 0, "KILIM": 0, "TIMER": 1})
+    pid_state: list = field(default_factory=lambda: [0, 0])
+    linked: dict = field(default_factory=dict)
+    print_device: int = 0
+
+
+@dataclass
 class MotionSettings:
     """VEL/ACC/DEC as the program set them (None = not set: DFLTVEL/DFLTACC, CR 179-180, 3456-3458)."""
 
@@ -72,7 +84,9 @@ class Controller:
         self.error: int = 0            # the pending error (ERRNO)
         self.error_history: list[ErrorRecord] = []
         self.motion = MotionSettings()
+        self.program_data = ProgramData()
         self.sysvar_memory: dict[int, int] = {}
+        self._switch_state = {}
         self.limit_blocked_direction = 0  # +1/-1 after a limit error: moving that way again is error 198
         self.stopped_line: int | None = None  # the line a breakpoint or single step stopped before
         self.breakpoints: set[int] = set()   # source lines (of the main file) where a debug build stops
@@ -168,13 +182,16 @@ class Controller:
     def start(self) -> None:
         self.interrupts.reset()
         self.motion = MotionSettings()
-        self.params.saved = dict(self.params.values)
+        self.program_data = ProgramData()
+        self.recorder.reset_settings()
         self.vm = None
         self.program_state = "running"
         try:
             self.vm = VM(self.image, self)
         except ControllerError as exc:
-            self._fail(exc)
+            self.raise_error(exc)
+            if self.program_state == "running":
+                self._end_program("error")
             return
         self._emit(Event("program", self.time_ms, f"program {self.image.name} started"))
 
@@ -184,6 +201,7 @@ class Controller:
             return
         self.program_state = "break"
         self._esc_stop()
+        self._restore_parameters()  # CR 3896-3899: after an abort the original values are back
         self._emit(Event("program", self.time_ms, "program stopped by break"))
 
     def continue_program(self, step: bool = False) -> None:
@@ -214,13 +232,18 @@ class Controller:
         a.stop(fast)
         if self.params["ESCCOND"] in (1, 2):
             level = 0 if self.params["ESCCOND"] == 1 else 1
-            for n in list(self.io.outputs) or list(iomod.OUTPUTS):
+            for n in iomod.OUTPUTS:
                 self.io.outputs[n] = level
+        self._brake(True)
+
+    def _restore_parameters(self) -> None:
+        self.params.restore()
+        self._functions = None
+        self.apply_parameters()
 
     def _end_program(self, state: str) -> None:
         self.program_state = state
-        self.params.restore()
-        self.apply_parameters()
+        self._restore_parameters()
         self.interrupts.reset()
         self.recorder.active = None
         self._emit(Event("program", self.time_ms, f"program {state}"))
@@ -231,9 +254,9 @@ class Controller:
         self.time_ms += 1
         if self.io.events:
             self.io.apply_events(self.time_ms)
-        if self._functions is None or self._functions:
-            self._machine_inputs()
         try:
+            if self._functions is None or self._functions:
+                self._machine_inputs()
             self.axis.tick()
             if self.axis.homing is not None and self.axis.homing.done:
                 self._homing_finished()
@@ -256,6 +279,7 @@ class Controller:
 
     _functions: dict | None = None
     _last_inputs: dict | None = None
+    _switch_state: dict = {}
 
     def input_functions(self) -> dict:
         """33-5x input functions, recomputed only when a parameter changes."""
@@ -278,11 +302,17 @@ class Controller:
                           plant.config.pos_limit_switch_qc is not None):
                 self.io.inputs[entry[0]] = int(active != entry[1])
         for name in (iomod.NEG_LIMIT, iomod.POS_LIMIT):
-            if self._function_input(name, functions) and self.error != 125 and self.axis.control_on:
-                direction = -1 if name == iomod.NEG_LIMIT else 1
-                if self.axis.plant.velocity * direction >= 0 or self.axis.mode != "idle":
-                    self.limit_blocked_direction = direction
-                    self.raise_error(ControllerError(125, f"{name.replace('_', ' ')} switch"))
+            active = self._function_input(name, functions)
+            was = self._switch_state.get(name, False)
+            self._switch_state[name] = active
+            if not active or self.error or not self.axis.control_on:
+                continue
+            direction = -1 if name == iomod.NEG_LIMIT else 1
+            # DG 11618-11628: 125 when the switch comes on, or when the axis is driven further into it;
+            # after ERRCLR it may stand on the switch and move away (the other way is 198).
+            if not was or self.axis.profile.velocity * direction > 0:
+                self.limit_blocked_direction = direction
+                raise ControllerError(125, f"{name.replace('_', ' ')} switch")
         # DG 10336-10418: error clear, break and continue inputs act on their rising edge
         now = {name: self._function_input(name, functions)
                for name in (iomod.ERROR_CLEAR, iomod.BREAK, iomod.CONTINUE) if name in functions}
@@ -372,6 +402,8 @@ class Controller:
         if first:
             self.error = number
         self._emit(Event("error", self.time_ms, f"error {number}: {error_text(number)}", number, line))
+        if number == 108:  # DG 8752-8786: the position control is switched off
+            self.axis.motor_off()
         if number in AXIS_ERRORS or number == 105:
             self._error_reaction()
         if self.program_state == "running" and self.interrupts.error_sub is None:
@@ -440,6 +472,7 @@ class Controller:
     def _homing_finished(self) -> None:
         homing = self.axis.homing
         self.axis.homing = None
+        self.axis.mode = "idle"
         if not homing.index_only:
             self.axis.shift_origin(round(self.axis.cpos))
             self.axis.limit_offset = 0

@@ -31,6 +31,7 @@ class Source:
     pending: bool = False
     order: int = 0
     last: float | None = None  # last seen value (edges and crossings)
+    spent: bool = False
 
 
 class Interrupts:
@@ -63,6 +64,7 @@ class Interrupts:
             self.sources = [s for s in self.sources if not (s.kind == kind and s.sub == sub)]
             if kind == "PERIOD" and value == 0:  # ON PERIOD 0 switches it off
                 return
+            self.drop_spent()
             self._check_limit("TIMER", sum(s.kind in ("TIME", "PERIOD") for s in self.sources))
             self._add(Source(kind, value, sub, next_time=now + value))
             return
@@ -110,6 +112,7 @@ class Interrupts:
                         s.next_time += max(s.number, 1)  # fixed rate: next = previous start + n (DG 6325)
                     else:
                         s.next_time = 1 << 62
+                        s.spent = True  # a fired ON TIME no longer counts toward the 12 timers
             elif kind in POSITION_KINDS:
                 value = positions.get(kind)
                 if value is not None and s.last is not None:
@@ -141,6 +144,9 @@ class Interrupts:
         for s in self.sources:
             if s.kind == "PARAM" and s.number == number:
                 s.pending = True
+
+    def drop_spent(self) -> None:
+        self.sources = [s for s in self.sources if not (s.spent and not s.pending)]
 
     def next_ready(self) -> Source | None:
         """The pending source to serve now, by priority; None if all pending ones are disabled."""

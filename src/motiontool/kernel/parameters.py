@@ -51,6 +51,8 @@ class ParameterStore:
             except ParameterError as exc:
                 raise ControllerError(183, str(exc)) from None
         self.values[p.index] = int(value)
+        if source != "program":  # a write from the IDE/LCP is the controller's value, not a program's SET
+            self.saved[p.index] = int(value)
         if self.on_change:
             self.on_change(p.index, int(value), source)
 

@@ -4,6 +4,7 @@ of sample 2 … (docs/decisions.md)."""
 
 from __future__ import annotations
 
+from collections import deque
 from dataclasses import dataclass, field
 
 from motiontool.kernel.errors import ControllerError
@@ -21,7 +22,7 @@ class Recording:
     cyclic: bool
     limit: int                      # samples to take
     start_ms: int
-    samples: list[list[int]] = field(default_factory=list)
+    samples: deque = field(default_factory=deque)  # bounded by `limit`: cyclic recordings drop the oldest
     running: bool = True
     countdown: int = 0
     taken: int = 0
@@ -39,6 +40,11 @@ class Recorder:
         self.cyclic = False
         self.recordings: list[Recording] = []
         self.active: Recording | None = None
+
+    def reset_settings(self) -> None:
+        """A new program starts with default recording settings; finished recordings stay (newest 20)."""
+        self.interval_ms, self.indices, self.array, self.cyclic, self.active = 1, [], None, False, None
+        del self.recordings[:-20]
 
     def set_indices(self, indices: list[int]) -> None:
         if len(indices) > MAX_INDICES:
@@ -62,8 +68,9 @@ class Recorder:
             raise ControllerError(194, f"{n} samples do not fit in dynamic memory")
         if self.array is None and self.active is not None and self.active.array is None:
             raise ControllerError(194, "TESTSTART repeated while recording into dynamic memory")
-        self.active = Recording(self.interval_ms, list(self.indices), self.array, self.cyclic,
-                                n if n > 0 else capacity, now_ms)
+        limit = n if n > 0 else capacity
+        self.active = Recording(self.interval_ms, list(self.indices), self.array, self.cyclic, limit, now_ms,
+                                deque(maxlen=limit))
         self.recordings.append(self.active)
 
     def stop(self, method: int) -> None:
@@ -83,12 +90,10 @@ class Recorder:
             return
         rec.countdown = rec.interval_ms - 1
         row = [read(i) for i in rec.indices]
-        if len(rec.samples) >= rec.limit:
-            if not rec.cyclic:
-                rec.running = False
-                self.active = None
-                return
-            rec.samples.pop(0)
+        if len(rec.samples) >= rec.limit and not rec.cyclic:
+            rec.running = False
+            self.active = None
+            return
         rec.samples.append(row)
         if rec.array is not None:  # cyclic recordings overwrite the oldest sample in the array
             k = len(row)

@@ -215,7 +215,12 @@ class VM:
             axis = args.pop(0)
             if axis != 1:
                 raise ControllerError(103, f"axis {axis}")
-        result = self.host.command(self, call, args)
+        try:
+            result = self.host.command(self, call, args)
+        except ControllerError:
+            if call.returns != "none":  # keep the stack balanced: the program goes on after ON ERROR
+                self.stack.append(0)
+            raise
         if isinstance(result, Wait):
             self.wait = result
             if result.done():  # finished at once: no need to wait a tick
@@ -246,7 +251,8 @@ class VM:
         elif op == Op.LOADE:
             i = stack.pop()
             array = stack.pop()
-            stack.append(array.data[_index(array, i)])
+            stack.append(0)  # replaced below; stays 0 if the index is refused (stack kept balanced)
+            stack[-1] = array.data[_index(array, i)]
         elif op == Op.STOREE:
             v = stack.pop()
             i = stack.pop()
@@ -255,13 +261,16 @@ class VM:
         elif op == Op.LOADE2:
             c, r = stack.pop(), stack.pop()
             array = stack.pop()
-            stack.append(array.data[_index2(array, r, c)])
+            stack.append(0)
+            stack[-1] = array.data[_index2(array, r, c)]
         elif op == Op.STOREE2:
             v, c, r = stack.pop(), stack.pop(), stack.pop()
             array = stack.pop()
             array.data[_index2(array, r, c)] = _typed(v, array.type)
         elif op == Op.LOADP:
-            stack.append(self.host.read_pseudo(arg, stack.pop()))
+            index = stack.pop()
+            stack.append(0)
+            stack[-1] = self.host.read_pseudo(arg, index)
         elif op == Op.STOREP:
             v = stack.pop()
             self.host.write_pseudo(arg, stack.pop(), v)
@@ -273,7 +282,8 @@ class VM:
         elif op == Op.REFE:
             i = stack.pop()
             array = stack.pop()
-            stack.append(Ref(array.data, _index(array, i), array.type))
+            stack.append(None)
+            stack[-1] = Ref(array.data, _index(array, i), array.type)
         elif op == Op.NEG:
             stack[-1] = semantics.wrap(-stack[-1])
         elif op == Op.NEGD:
@@ -329,8 +339,6 @@ class VM:
                 if ret.wait is not None:
                     ret.wait.resume()
                     self.wait = ret.wait
-                elif ret.wait is not None and ret.wait.value is not None:
-                    stack.append(ret.wait.value)
                 self.host.interrupt_returned(self, ret.interrupt)
         elif op == Op.PRINTV:
             v = stack.pop()
@@ -379,6 +387,10 @@ class VM:
     def _call(self, index: int) -> None:
         func = self.image.functions[index]
         n = len(func.params)
+        if self.stack_used + len(func.locals) > self.stack_size:  # checked before the arguments are taken
+            del self.stack[len(self.stack) - n:]
+            self.stack.append(0.0 if func.type == "double" else 0)
+            raise ControllerError(193, f"calling {func.name}")
         args = self.stack[len(self.stack) - n:] if n else []
         del self.stack[len(self.stack) - n:]
         local_values = list(args)

@@ -18,7 +18,10 @@ class ControllerRegistry:
         """The link to a controller, opened on first use."""
         if controller_id not in SIMULATED_IDS:
             raise ValueError(f"no controller {controller_id} on the simulated interface")
-        if controller_id not in self.links:
+        link = self.links.get(controller_id)
+        if link is None or not getattr(link, "alive", True):  # a dead link is replaced, not reused
+            if link is not None:
+                link.close()
             self.links[controller_id] = EmbeddedLink(realtime_factor=self.realtime_factor)
         return self.links[controller_id]
 

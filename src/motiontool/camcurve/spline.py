@@ -1,0 +1,352 @@
+"""Curve maths: the slave position as a piecewise polynomial of the master position.
+
+The CAM editor "calculates the curve from Fix points with the help of a spline interpolation. This is optimized
+to a minimum torque. In order to prevent speed leaps in the case of repeated curve cycles, the velocity at the
+beginning and the end is equated." [DG L1356-1358].  Segment shapes [DG L3998-4022, ide-spec 4.35-4.37]:
+
+* straight (a T point and the next T/CZ/C3 point): a line, constant velocity, zero acceleration;
+* a run of consecutive curved (C) segments: ONE cubic spline through the run's points (scipy CubicSpline).
+  Where the run borders a straight section its end is clamped to the line's slope, so velocity is continuous
+  (C1) into the line; at the profile start/end the Type-of-Curve rule gives the boundary condition
+  (``_boundary_gradients``);
+* a single curved segment between two straight sections: the 5th-order Hermite polynomial matching position and
+  slope at both ends with zero acceleration there ("both the velocity and acceleration will match" [DG L4004]);
+* CZ: trapezoidal velocity (two constant-acceleration halves), C3: the cubic Hermite segment.
+
+The whole profile is one scipy PPoly (degree 5, extra breakpoint in the middle of CZ segments), so every
+quantity is vectorised over numpy arrays.  Outside 0..master_length the profile repeats cyclically, the slave
+advancing by one slave length per cycle (the controller restarts the curve at the end of every cycle).
+
+Velocity is dy/dx in UU/MU, acceleration d²y/dx² in UU/MU², jerk d³y/dx³ in UU/MU³ (ide-spec 4.37).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.interpolate import CubicSpline, PPoly
+
+from motiontool.camcurve.model import CUBIC, LINE, SPLINE, TRAPEZOID, Curve, CurveType, StartStopPair
+
+_DEGREE = 5
+
+
+def _column(ascending: list[float]) -> np.ndarray:
+    """Local polynomial coefficients (ascending powers) as a PPoly column (descending, padded to degree 5)."""
+    col = np.zeros(_DEGREE + 1)
+    for power, value in enumerate(ascending):
+        col[_DEGREE - power] = value
+    return col
+
+
+def _quintic(h: float, y0: float, v0: float, y1: float, v1: float) -> list[float]:
+    """Hermite quintic on [0, h]: position and slope at both ends, zero second derivative at both ends."""
+    a = np.array([[h ** 3, h ** 4, h ** 5], [3 * h ** 2, 4 * h ** 3, 5 * h ** 4], [6 * h, 12 * h ** 2, 20 * h ** 3]])
+    c3, c4, c5 = np.linalg.solve(a, [y1 - y0 - v0 * h, v1 - v0, 0.0])
+    return [y0, v0, 0.0, c3, c4, c5]
+
+
+def _cubic(h: float, y0: float, v0: float, y1: float, v1: float) -> list[float]:
+    """Cubic Hermite on [0, h] (fix point type C3)."""
+    m = (y1 - y0) / h
+    return [y0, v0, (3 * m - 2 * v0 - v1) / h, (v0 + v1 - 2 * m) / h ** 2]
+
+
+def _trapezoid(h: float, y0: float, v0: float, y1: float, v1: float) -> tuple[list[float], list[float]]:
+    """CZ: velocity linear v0 → vm over the first half and vm → v1 over the second; vm = (4Δy/h − v0 − v1)/2."""
+    half = h / 2
+    vm = (4 * (y1 - y0) / h - v0 - v1) / 2
+    ym = y0 + (v0 + vm) / 2 * half
+    return [y0, v0, (vm - v0) / half / 2], [ym, vm, (v1 - vm) / half / 2]
+
+
+def _spline(xs: np.ndarray, ys: np.ndarray, left: float | None, right: float | None) -> CubicSpline:
+    """Cubic spline through a run; None = natural end (zero second derivative), a number = clamped slope."""
+    bc = ((2, 0.0) if left is None else (1, float(left)), (2, 0.0) if right is None else (1, float(right)))
+    return CubicSpline(xs, ys, bc_type=bc)
+
+
+class CurveProfile:
+    """The evaluated profile of one Curve.  Build once (``profile(curve)`` caches), evaluate many times."""
+
+    def __init__(self, curve: Curve) -> None:
+        self.curve = curve
+        self.kinds = curve.segment_kinds
+        self.x = np.array([p.master for p in curve.fix_points], dtype=float)
+        self.y = np.array([p.slave for p in curve.fix_points], dtype=float)
+        h = np.diff(self.x)
+        self.line_slopes = {k: (self.y[k + 1] - self.y[k]) / h[k] for k, kind in enumerate(self.kinds)
+                            if kind == LINE}
+        self.runs = self._spline_runs()
+        gs, ge = self._boundary_gradients()
+        self.start_gradient_used, self.end_gradient_used = gs, ge
+        breaks: list[float] = [0.0]
+        columns: list[np.ndarray] = []
+        splines = {run[0]: self._run_spline(run, gs, ge) for run in self.runs}
+        quintic_runs = {run[0] for run in self.runs if self._is_quintic(run)}
+        for k, kind in enumerate(self.kinds):
+            x0, x1, y0, y1, hk = self.x[k], self.x[k + 1], self.y[k], self.y[k + 1], h[k]
+            if kind == LINE:
+                columns.append(_column([y0, self.line_slopes[k]]))
+            elif kind == SPLINE and k in quintic_runs:
+                columns.append(_column(_quintic(hk, y0, self.line_slopes[k - 1], y1, self.line_slopes[k + 1])))
+            elif kind == SPLINE:
+                start = max(r for r in splines if r <= k)
+                cs = splines[start]
+                columns.append(_column(list(cs.c[::-1, k - start])))
+            elif kind == CUBIC:
+                columns.append(_column(_cubic(hk, y0, self.line_slopes[k - 1], y1, self.line_slopes[k + 1])))
+            else:
+                assert kind == TRAPEZOID, kind
+                first, second = _trapezoid(hk, y0, self.line_slopes[k - 1], y1, self.line_slopes[k + 1])
+                columns += [_column(first), _column(second)]
+                breaks.append(x0 + hk / 2)
+            breaks.append(x1)
+        self.ppoly = PPoly(np.column_stack(columns), np.array(breaks), extrapolate=True)
+        self._derivatives = [self.ppoly] + [self.ppoly.derivative(n) for n in (1, 2, 3)]
+
+    # -- construction helpers ---------------------------------------------------------------------------------
+    def _spline_runs(self) -> list[list[int]]:
+        runs: list[list[int]] = []
+        for k, kind in enumerate(self.kinds):
+            if kind != SPLINE:
+                continue
+            if runs and runs[-1][-1] == k - 1:
+                runs[-1].append(k)
+            else:
+                runs.append([k])
+        return runs
+
+    def _is_quintic(self, run: list[int]) -> bool:
+        return len(run) == 1 and run[0] - 1 in self.line_slopes and run[0] + 1 in self.line_slopes
+
+    def _run_bc(self, run: list[int], gs: float | None, ge: float | None) -> tuple[float | None, float | None]:
+        left = self.line_slopes.get(run[0] - 1, gs) if run[0] > 0 else gs
+        right = self.line_slopes.get(run[-1] + 1, ge) if run[-1] < len(self.kinds) - 1 else ge
+        return left, right
+
+    def _run_points(self, run: list[int]) -> tuple[np.ndarray, np.ndarray]:
+        return self.x[run[0]:run[-1] + 2], self.y[run[0]:run[-1] + 2]
+
+    def _run_spline(self, run: list[int], gs: float | None, ge: float | None) -> CubicSpline:
+        return _spline(*self._run_points(run), *self._run_bc(run, gs, ge))
+
+    def _natural_end_slopes(self) -> tuple[float, float]:
+        """Slopes at the profile start/end when those ends are left natural (zero curvature)."""
+        first, last = self.runs[0], self.runs[-1]
+        s0 = self._run_spline(first, None, None)(self.x[0], 1)
+        s1 = self._run_spline(last, None, None)(self.x[-1], 1)
+        return float(s0), float(s1)
+
+    def _boundary_gradients(self) -> tuple[float | None, float | None]:
+        """Gradient imposed on a curved first/last segment by the Type of Curve [DG L3708-3729].
+
+        * AVERAGE_GRADIENTS: both free ends get the mean of their natural-spline slopes; an end that is a
+          straight line keeps its slope and the other end takes it (the only way to avoid a velocity leap);
+        * END_EQUALS_START: the start is natural (or the line's slope); the end is clamped to that gradient.
+          When one spline run spans the whole profile the start slope depends on the end slope linearly, so the
+          fixed point g = s0(g) is solved exactly from two evaluations;
+        * ZERO_GRADIENTS: both 0;  SPECIFIED_*: the user's start_gradient / end_gradient.
+        """
+        c = self.curve
+        ctype = c.curve_type
+        if ctype == CurveType.ZERO_GRADIENTS:
+            return 0.0, 0.0
+        if ctype in (CurveType.SPECIFIED_GRADIENTS, CurveType.SPECIFIED_IMMEDIATE):
+            return float(c.start_gradient), float(c.end_gradient)
+        last_k = len(self.kinds) - 1
+        start_line = self.line_slopes.get(0)
+        end_line = self.line_slopes.get(last_k)
+        if start_line is not None and end_line is not None:
+            return None, None
+        if ctype == CurveType.AVERAGE_GRADIENTS:
+            if start_line is not None:
+                return None, start_line
+            if end_line is not None:
+                return end_line, None
+            s0, s1 = self._natural_end_slopes()
+            g = (s0 + s1) / 2
+            return g, g
+        # END_EQUALS_START
+        if start_line is not None:
+            return None, start_line
+        first = self.runs[0]
+        xs, ys = self._run_points(first)
+        if first[-1] == last_k:  # one run from start to end: solve g = s0(g), s0 affine in g
+            a = float(_spline(xs, ys, None, 0.0)(xs[0], 1))
+            b = float(_spline(xs, ys, None, 1.0)(xs[0], 1)) - a
+            g = a / (1.0 - b) if abs(1.0 - b) > 1e-12 else a
+            return g, g
+        g = float(_spline(xs, ys, None, self._run_bc(first, None, None)[1])(xs[0], 1))
+        return g, g
+
+    # -- evaluation -------------------------------------------------------------------------------------------
+    def _eval(self, master, nu: int, periodic: bool):
+        x = np.asarray(master, dtype=float)
+        length = self.curve.master_length
+        if periodic:
+            cycles = np.floor(x / length)
+            xr = np.clip(x - cycles * length, 0.0, length)
+        else:
+            cycles, xr = np.zeros_like(x), x
+        out = self._derivatives[nu](xr)
+        if nu == 0:
+            out = out + cycles * self.curve.slave_length
+        return float(out) if np.ndim(out) == 0 else out
+
+    def slave(self, master, periodic: bool = True):
+        """CURVEPOS: slave position [UU] at curve-master position(s) [MU]."""
+        return self._eval(master, 0, periodic)
+
+    def velocity(self, master, periodic: bool = True):
+        """Slave velocity dy/dx [UU/MU]."""
+        return self._eval(master, 1, periodic)
+
+    def acceleration(self, master, periodic: bool = True):
+        """Slave acceleration d²y/dx² [UU/MU²]."""
+        return self._eval(master, 2, periodic)
+
+    def jerk(self, master, periodic: bool = True):
+        """Slave jerk d³y/dx³ [UU/MU³]."""
+        return self._eval(master, 3, periodic)
+
+    def one_sided(self, piece: int, nu: int, at_end: bool) -> float:
+        """Value of derivative nu of PPoly piece ``piece`` at its start or end (one-sided limit)."""
+        col = np.poly1d(self.ppoly.c[:, piece])
+        h = self.ppoly.x[piece + 1] - self.ppoly.x[piece]
+        return float(np.polyder(col, nu)(h if at_end else 0.0)) if nu else float(col(h if at_end else 0.0))
+
+    def max_abs(self, nu: int) -> float:
+        """Exact maximum of |derivative nu| over one cycle (piece ends and interior stationary points)."""
+        best = 0.0
+        for i in range(self.ppoly.c.shape[1]):
+            p = np.polyder(np.poly1d(self.ppoly.c[:, i]), nu) if nu else np.poly1d(self.ppoly.c[:, i])
+            h = self.ppoly.x[i + 1] - self.ppoly.x[i]
+            candidates = [0.0, h]
+            dp = np.polyder(p)
+            if dp.order > 0 or dp.c[0] != 0:
+                candidates += [r.real for r in np.atleast_1d(dp.roots) if abs(r.imag) < 1e-12 and 0 < r.real < h]
+            best = max(best, float(np.max(np.abs(p(np.array(candidates))))))
+        return best
+
+
+@functools.lru_cache(maxsize=128)
+def profile(curve: Curve) -> CurveProfile:
+    """The (cached) evaluated profile of a curve."""
+    return CurveProfile(curve)
+
+
+def slave(curve: Curve, master):
+    return profile(curve).slave(master)
+
+
+def velocity(curve: Curve, master):
+    return profile(curve).velocity(master)
+
+
+def acceleration(curve: Curve, master):
+    return profile(curve).acceleration(master)
+
+
+def jerk(curve: Curve, master):
+    return profile(curve).jerk(master)
+
+
+def round_half_up(values) -> list[int]:
+    """Round to the nearest integer, halves towards +infinity (how we store positions in the array)."""
+    return [int(v) for v in np.floor(np.asarray(values, dtype=float) + 0.5)]
+
+
+def grid_positions(curve: Curve) -> np.ndarray:
+    """The N+1 equidistant master positions of the interpolation grid (first and last included)."""
+    return np.arange(curve.intervals + 1) * curve.interval_size
+
+
+def interpolation_points(curve: Curve) -> list[int]:
+    """Slave values at the N+1 grid positions, rounded to integers as the controller stores them [DG L1364]."""
+    return round_half_up(profile(curve).slave(grid_positions(curve), periodic=False))
+
+
+# -- curve info --------------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class CurveInfo:
+    """Values of the Curve Info card [DG L3799-3839, ide-spec 4.49-4.54]."""
+
+    max_velocity: float  # UU/MU
+    max_acceleration: float  # UU/MU²
+    max_jerk: float  # UU/MU³
+    interval_size: float  # MU
+    interval_time_ms: float  # ms
+    master_velocity: float  # MU/s at cycles_per_min
+    max_velocity_per_s: float  # UU/s
+    max_acceleration_per_s2: float  # UU/s²
+
+
+def curve_info(curve: Curve) -> CurveInfo:
+    prof = profile(curve)
+    master_velocity = curve.master_length * curve.cycles_per_min / 60.0
+    vmax, amax = prof.max_abs(1), prof.max_abs(2)
+    return CurveInfo(vmax, amax, prof.max_abs(3), curve.interval_size, curve.interval_time_ms, master_velocity,
+                     vmax * master_velocity, amax * master_velocity ** 2)
+
+
+def slave_velocity_limit(velmax_rpm: float, qc_per_rev: float, qc_per_uu: float, master_length: float,
+                         cycles_per_min: float) -> float:
+    """Slave velocity limit [UU/MU] (ide-spec 4.51, DERIVED): VELMAX·qc/rev / (qc/UU · L · cycles/min)."""
+    return velmax_rpm * qc_per_rev / (qc_per_uu * master_length * cycles_per_min)
+
+
+def slave_acceleration_limit(velmax_rpm: float, qc_per_rev: float, qc_per_uu: float, rampmin_s: float,
+                             master_length: float, cycles_per_min: float) -> float:
+    """Slave acceleration limit [UU/MU²] (ide-spec 4.53, DERIVED)."""
+    acc_uu_s2 = velmax_rpm / 60.0 * qc_per_rev / qc_per_uu / rampmin_s
+    return acc_uu_s2 / (master_length * cycles_per_min / 60.0) ** 2
+
+
+# -- engage / disengage paths -----------------------------------------------------------------------------------
+def blend(u):
+    """Quintic smoothstep w(u) = 10u³ − 15u⁴ + 6u⁵: w(0)=0, w(1)=1, w' and w'' zero at both ends."""
+    u = np.clip(np.asarray(u, dtype=float), 0.0, 1.0)
+    return u ** 3 * (10 - 15 * u + 6 * u ** 2)
+
+
+def path_point_count(curve: Curve, span: float) -> int:
+    """Points of a path over ``span`` MU: one per grid interval plus one, at least 2 (docs/formats/cam-array.md)."""
+    return max(2, int(math.floor(span / curve.interval_size + 1e-9)) + 1)
+
+
+def _path(curve: Curve, pair: StartStopPair | int, slave_stop: float | None, points: int | None,
+          engage: bool) -> tuple[np.ndarray, np.ndarray]:
+    if isinstance(pair, int):
+        pair = curve.start_stop_pairs[pair]
+    stop_pos = curve.slave_stop_position if slave_stop is None else slave_stop
+    span = pair.stop - pair.start
+    if span < 0:
+        span += curve.master_length
+    if span == 0:  # Start = Stop: engage at maximum velocity, no path [DG L4050]
+        return np.array([float(pair.start)]), np.array([float(stop_pos)])
+    n = points or path_point_count(curve, span)
+    u = np.linspace(0.0, 1.0, n)
+    xs = pair.start + u * span
+    on_curve = profile(curve).slave(xs)
+    w = blend(u) if engage else 1.0 - blend(u)
+    return xs, stop_pos + w * (on_curve - stop_pos)
+
+
+def engage_path(curve: Curve, pair: StartStopPair | int, slave_stop: float | None = None,
+                points: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Engage path (forward): from the slave stop position at rest at Start onto the profile at Stop.
+
+    y(x) = s + w(u)·(f(x) − s), u = (x − Start)/span: y = s and y' = 0 at Start, y = f and y' = f' (and y'' = f'')
+    at Stop.  Start > Stop wraps around the cycle (master positions beyond the cycle end are returned).
+    """
+    return _path(curve, pair, slave_stop, points, engage=True)
+
+
+def disengage_path(curve: Curve, pair: StartStopPair | int, slave_stop: float | None = None,
+                   points: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Disengage path (forward): leaves the profile at Start with its velocity, at rest at the stop position at Stop."""
+    return _path(curve, pair, slave_stop, points, engage=False)
