@@ -80,7 +80,9 @@ def test_execute_prints_in_the_messages_window_and_esc_breaks(window, qtbot):
     window.actions_by_text["Break"].trigger()
     qtbot.waitUntil(lambda: window.bridge.link.status().program_state == "break", timeout=5000)
     qtbot.waitUntil(lambda: window.bridge.link.status().axend & 1, timeout=10000)  # decelerated to standstill
-    assert "stopped" in window.controller_label.text() or "break" in window.messages.toPlainText()
+    # the status bar and messages follow through queued events: wait for them rather than race them
+    qtbot.waitUntil(lambda: "stopped" in window.controller_label.text()
+                    or "break" in window.messages.toPlainText(), timeout=5000)
 
 
 def test_command_list_inserts_the_preview(window, qtbot):
