@@ -30,10 +30,10 @@ class Run:
 
 
 def start(source: str, settings: dict | None = None, inputs: list[tuple[int, int, int]] | None = None,
-          plant=None, link: EmbeddedLink | None = None) -> Run:
+          plant=None, link: EmbeddedLink | None = None, master=None) -> Run:
     result = compile_source(source, "test.m")
     assert result.ok, "\n".join(d.format() for d in result.diagnostics)
-    link = link or EmbeddedLink(plant)
+    link = link or EmbeddedLink(plant, master=master)
     run = Run(link)
 
     def on_event(event: LinkEvent) -> None:

@@ -20,15 +20,17 @@ from motiontool.comms.link import Link
 from motiontool.comms.protocol import LinkError, LinkEvent, Request, Response
 from motiontool.comms.service import ControllerService
 from motiontool.kernel.controller import Controller
+from motiontool.kernel.master import MasterConfig
 from motiontool.kernel.plant import PlantConfig
 
 
 class EmbeddedLink(Link):
     kind = "embedded"
 
-    def __init__(self, plant: PlantConfig | None = None, realtime_factor: float | None = None):
+    def __init__(self, plant: PlantConfig | None = None, realtime_factor: float | None = None,
+                 master: MasterConfig | None = None):
         super().__init__()
-        self.service = ControllerService(Controller(plant))
+        self.service = ControllerService(Controller(plant, master=master))
         self.service.listeners.append(self._deliver)
         self.realtime_factor = realtime_factor
         self._requests: queue.Queue = queue.Queue()

@@ -18,7 +18,7 @@ from motiontool.kernel.plant import Plant, PlantConfig
 from motiontool.kernel.profile import Limits, ProfileGenerator
 from motiontool.kernel.units import Scaling
 
-IDLE, POSITIONING, SPEED, STOPPING, HOMING = "idle", "positioning", "speed", "stopping", "homing"
+IDLE, POSITIONING, SPEED, STOPPING, HOMING, SYNC = "idle", "positioning", "speed", "stopping", "homing", "sync"
 
 
 @dataclass
@@ -60,6 +60,7 @@ class Axis:
         self._window_history: list[int] = []
         self.homing = None                # homing.Homing while HOME / INDEX runs
         self.limit_offset = 0             # DEFORIGIN shifts the software limits with the origin (DG 10158)
+        self.sync = None                  # sync.SyncMotion while SYNCV / SYNCP runs (mode "sync")
 
     # --- readouts (axis frame, qc) ------------------------------------------------------------------
     @property
@@ -82,7 +83,9 @@ class Axis:
     def tick(self) -> None:
         pg = self.profile
         if self.control_on:
-            if pg.mode != "idle":
+            if self.mode == SYNC:
+                self.sync.step(pg)
+            elif pg.mode != "idle":
                 pg.step()
             if self.homing is not None:
                 self.homing.tick(self)
@@ -147,21 +150,43 @@ class Axis:
         return Limits(max(vel, 1e-9), max(acc, 1e-12), max(dec, 1e-12), ramp_type, jerk)
 
     def move_to(self, target: float, limits: Limits) -> None:
+        self._leave_sync()
         self._start()
         self.profile.move_to(float(target), limits)
         self.mode = POSITIONING
         self.last_motion = ("position", float(target), limits)
 
     def run_at(self, velocity: float, limits: Limits) -> None:
+        self._leave_sync()
         self._start()
         self.profile.run_at(velocity, limits)
         self.mode = SPEED
         self.last_motion = ("speed", velocity, limits)
 
+    def synchronise(self, motion) -> None:
+        """SYNCV / SYNCP: from now on the sync motion drives the commanded position (RAMPTYPE does not
+        apply, DG 8987)."""
+        self._start()
+        pos, vel = self.profile.position, self.profile.velocity
+        self.profile.hold(pos)
+        self.profile.velocity = vel
+        self.profile.mode = "sync"
+        self.sync = motion
+        self.mode = SYNC
+        self.homing = None
+
+    def _leave_sync(self) -> None:
+        if self.mode == SYNC:
+            self.profile.acceleration = 0.0
+            self.profile.mode = "idle"
+        self.sync = None
+
     def stop(self, limits: Limits, remember: bool = True) -> None:
-        """MOTOR STOP / CSTOP / Esc: brake to standstill; CONTINUE can resume the interrupted motion."""
+        """MOTOR STOP / CSTOP / Esc: brake to standstill; CONTINUE can resume the interrupted motion (not a
+        synchronisation, CR 574; MOTOR STOP ends it with DEC, CR 2367-2375)."""
         if remember and self.mode in (POSITIONING, SPEED):
             self.stopped_motion = self.last_motion
+        self._leave_sync()
         if self.mode != IDLE or not self.profile.done:
             self.profile.stop(limits)
             self.mode = STOPPING
@@ -169,6 +194,7 @@ class Axis:
 
     def hold(self) -> None:
         """Stand still where the motor is (MOTOR ON, ERRCLR): CPOS := APOS, no tracking error."""
+        self.sync = None
         self.profile.hold(float(self.apos))
         self.mode = IDLE
         self.integral = 0.0
@@ -178,6 +204,7 @@ class Axis:
         if self.mode in (POSITIONING, SPEED):  # CONTINUE resumes it after MOTOR ON / ERRCLR (CR 564-578)
             self.stopped_motion = self.last_motion
         self.control_on = False
+        self.sync = None
         self.profile.hold(float(self.apos))
         self.mode = IDLE
         self.homing = None
@@ -198,7 +225,10 @@ class Axis:
         """Make axis position `by_qc` the new 0 (DEFORIGIN/DEFCORIGIN/HOME); the tracking error is kept."""
         self.origin += by_qc
         self.apos -= by_qc
-        if self.profile.done:
+        if self.mode == SYNC:  # the sync relation moves with the origin
+            self.profile.position -= by_qc
+            self.sync.shift(-by_qc)
+        elif self.profile.done:
             self.profile.hold(self.profile.position - by_qc)
         else:
             self.profile.shift(-by_qc)  # the running plan moves with the origin

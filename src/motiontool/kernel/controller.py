@@ -16,6 +16,7 @@ from motiontool.kernel.arrays import ArrayMemory
 from motiontool.kernel.axis import Axis, Gains
 from motiontool.kernel.errors import AXIS_ERRORS, ControllerError, error_text
 from motiontool.kernel.interrupts import Interrupts
+from motiontool.kernel.master import Master, MasterConfig
 from motiontool.kernel.parameters import ParameterStore
 from motiontool.kernel.plant import PlantConfig
 from motiontool.kernel.recorder import Recorder
@@ -57,6 +58,9 @@ class ProgramData:
     pid_state: list = field(default_factory=lambda: [0, 0])
     linked: dict = field(default_factory=dict)
     print_device: int = 0
+    sync_shift: int = 0                       # Σ MOVESYNCORIGIN (master qc)
+    sync_origin: tuple[int, int] | None = None  # DEFSYNCORIGIN (master, slave) for the next SYNCP
+    syncstat_flags: int = 0                   # latched SYNCSTAT bits (marker hits/errors), SYNCSTATCLR
 
 
 @dataclass
@@ -69,8 +73,9 @@ class MotionSettings:
 
 
 class Controller:
-    def __init__(self, plant: PlantConfig | None = None):
+    def __init__(self, plant: PlantConfig | None = None, master: MasterConfig | None = None):
         self.time_ms = 0
+        self.master = Master(master)
         self.params = ParameterStore()
         self.arrays = ArrayMemory()
         self.io = iomod.IO()
@@ -122,7 +127,9 @@ class Controller:
         readouts = {3450: lambda: s.uu(s.axis.apos), 3451: lambda: s.uu(s.axis.cpos),
                     3456: lambda: s.uu(s.axis.tracking_error), 3458: lambda: s.avel(),
                     3440: lambda: s.io.input_word(), 3441: lambda: s.io.output_word(),
-                    3461: lambda: s.axis.axend(), 3462: lambda: s.stat()}
+                    3461: lambda: s.axis.axend(), 3462: lambda: s.stat(),
+                    3452: lambda: s.master.mapos, 3459: lambda: s.master.mavel,
+                    3457: lambda: s.syncerr(), 3460: lambda: s.syncstat()}
         self.params.readouts.update(readouts)
 
     # --- units ------------------------------------------------------------------------------------------
@@ -138,6 +145,20 @@ class Controller:
 
     def avel(self) -> int:
         return self.axis.scaling.velocity_uu_per_s(self.axis.plant.velocity)
+
+    def syncerr(self) -> int:
+        """SYNCERR (34-57) in UU: master-derived target − APOS; absolute unless SYNCACCURACY < 0 (DG 9430-9460)."""
+        sync = self.axis.sync
+        if sync is None:
+            return 0
+        err = self.axis.scaling.qc_to_uu(sync.error_qc(self.axis.apos))
+        return err if sync.accuracy < 0 else abs(err)
+
+    def syncstat(self) -> int:
+        """SYNCSTAT (34-60): latched flags plus ACCURACY (4) while a SYNCP is inside SYNCACCURACY."""
+        sync = self.axis.sync
+        live = sync.status(self.axis.apos) if sync is not None else 0
+        return self.program_data.syncstat_flags | live
 
     def stat(self) -> int:
         """CR 4054-4085: byte 3 MOVING/POSFLOAT, byte 2 control off / position reached, byte 0 switches."""
@@ -230,6 +251,7 @@ class Controller:
         a = self.axis
         fast = a.limits(a.scaling.vmax, a.scaling.amax, a.scaling.amax, 0, (0, 0, 0, 0))
         a.stop(fast)
+        self.master.stop_virtual()  # DG 10782: [Esc] stops the master simulation
         if self.params["ESCCOND"] in (1, 2):
             level = 0 if self.params["ESCCOND"] == 1 else 1
             for n in iomod.OUTPUTS:
@@ -257,6 +279,7 @@ class Controller:
         try:
             if self._functions is None or self._functions:
                 self._machine_inputs()
+            self.master.tick(self.time_ms)
             self.axis.tick()
             if self.axis.homing is not None and self.axis.homing.done:
                 self._homing_finished()
@@ -466,6 +489,9 @@ class Controller:
         return (self.pcd if which == 1 else self.pdo).get(index, 0)
 
     def write_pseudo(self, which: int, index: int, value: int) -> None:
+        if which == 0 and index == 4105:  # simulated master position (DG 8370)
+            self.master.write_position(value)
+            return
         target = self.sysvar_memory if which == 0 else (self.pcd if which == 1 else self.pdo)
         target[index] = value
 

@@ -15,6 +15,7 @@ AXIS_PROCESS_DATA = {
     6: ("REG_TRACKERR", "qc", lambda c: round(c.axis.tracking_error)),
     7: ("REG_AXEND", "", lambda c: c.axis.axend()),
     8: ("REG_STAT", "", lambda c: c.stat()),
+    9: ("MASTER_POS", "qc", lambda c: c.master.raw),  # 4105: simulated master position (DG 8370)
     10: ("VELMAXQC", "qc/s", lambda c: round(c.axis.scaling.vmax * 1000)),
     23: ("sys_clock", "ms", lambda c: c.time_ms),
     28: ("REG_NORMTRACKERR", "qc", lambda c: round(abs(c.axis.tracking_error))),

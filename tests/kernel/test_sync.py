@@ -1,0 +1,196 @@
+"""Synchronisation: master encoder, virtual master, exact gearing, SYNCV, SYNCP (kernel-spec a.3, f.0-f.4)."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from motiontool.kernel.controller import Controller
+from motiontool.kernel.master import Master, MasterConfig
+from motiontool.kernel.sync import Gear
+from tests.kernel.helpers import run_source, start
+
+LOOP = "WHILE 1 DO\nENDWHILE\n"
+FAST = {"FFVEL": 1000}  # velocity feed-forward: the slave follows with a small tracking error
+
+
+def test_gear_has_no_drift_over_a_million_ticks():
+    """DG 946: the gear must be exact, any rounding drifts. 55/2048 is the conveyor of DG 9344-9360."""
+    master = Master(MasterConfig(velocity=1.37))
+    gear = Gear(55, 2048, 0)
+    last = master.raw
+    for t in range(1, 1_000_001):
+        master.tick(t)
+        gear.advance(master.raw - last)
+        last = master.raw
+        if t % 250_000 == 0:
+            assert gear.out == math.floor(master.raw * 55 / 2048) == (master.raw * 55) // 2048
+    assert master.raw == 1_370_000
+    assert gear.out == 1_370_000 * 55 // 2048
+
+
+def test_gear_negative_factor_turns_the_direction():
+    gear = Gear(3, -2, 0)
+    assert gear.advance(5) == -8  # floor(-7.5)
+    assert gear.advance(-5) == 0
+
+
+def test_master_config_ramp_table_and_mavel():
+    ramp = Master(MasterConfig(velocity=10.0, acceleration=0.01))
+    for t in range(1, 2001):
+        ramp.tick(t)
+    assert ramp.velocity == 10.0
+    assert ramp.mavel == 10_000  # qc/s over 20 ms (CR 2175-2195)
+    table = Master(MasterConfig.from_mapping({"table": [(0, 0.0), (1000, 4.0), (2000, 4.0), (2500, -2.0)]}))
+    speeds = []
+    for t in range(1, 3001):
+        table.tick(t)
+        speeds.append(table.velocity)
+    assert speeds[499] == pytest.approx(2.0) and speeds[1499] == 4.0 and speeds[2999] == -2.0
+    with pytest.raises(ValueError):
+        MasterConfig.from_mapping({"speed": 3})
+
+
+def test_controller_takes_a_master_config_and_reports_mapos_mavel():
+    ctl = Controller(master=MasterConfig(velocity=2.5))
+    ctl.run_for(1000)
+    assert ctl.master.mapos == 2500
+    assert ctl.params.get(3452) == 2500          # 34-52 MAPOS
+    assert ctl.params.get(3459) == 2500          # 34-59 MAVEL, qc/s
+    assert Controller().master.mapos == 0        # default: the master stands still
+
+
+def test_pulsvel_drives_the_master_and_pulsacc_applies_at_the_next_pulsvel():
+    """CR 3552-3611: PULSVEL in Hz; one pulse = one encoder line = 4 qc (CR 3574-3611, kernel-spec p.7)."""
+    run = run_source("PULSVEL 10000\nDELAY 1000\nPRINT MAPOS, \" \", MAVEL, \" \", SYSVAR[4105]\n"
+                     "PULSACC 20000\nDELAY 500\nPRINT MAVEL\nPULSVEL 0\nDELAY 2500\nPRINT MAVEL\n"
+                     "PULSACC 0\nPULSVEL 5000\nDEFMORIGIN\nDELAY 100\nPRINT MAPOS\n"
+                     "SETMORIGIN 1000\nPRINT MAPOS\n", 8000)
+    assert not run.errors
+    mapos, mavel, sysvar = (int(x) for x in run.prints[0].split())
+    assert abs(mapos - 40_000) <= 40 and mavel == 40_000 and sysvar == mapos
+    assert run.prints[1] == "40000"          # PULSACC waits for the next PULSVEL
+    assert run.prints[2] == "0"              # 80 qc/ms² … 40 qc/ms → 0 in 0.5 s: stopped after 2.5 s
+    # PULSACC 0 + PULSVEL switches the virtual master off (the default external master stands still), DEFMORIGIN
+    assert run.prints[3] == "0"
+    assert int(run.prints[4]) == run.controller.master.raw - 1000 == 68_980  # SETMORIGIN 1000: counter 1000 is 0
+
+
+def test_syncv_slave_velocity_is_master_velocity_times_the_gear():
+    """DG 9318-9324: slave velocity = master velocity · SYNCFACTS / SYNCFACTM, reached with ACC (DG 796-798)."""
+    run = start("VEL 100\nACC 100\nSYNCV\n" + LOOP, settings={"SYNCFACTS": 55, "SYNCFACTM": 32, **FAST},
+                master=MasterConfig(velocity=20.0))
+    ctl = run.controller
+    run.advance(100)
+    assert 0 < ctl.axis.profile.velocity < 20.0 * 55 / 32  # still on the ACC ramp
+    run.advance(1900)
+    assert ctl.axis.mode == "sync"
+    assert ctl.axis.profile.velocity == pytest.approx(20.0 * 55 / 32)
+    assert abs(ctl.avel() - 34_375) < 50                 # AVEL in UU/s
+    assert not run.errors
+
+
+def test_syncv_is_limited_by_vel():
+    run = start("VEL 10\nACC 100\nSYNCV\n" + LOOP, settings=FAST, master=MasterConfig(velocity=50.0))
+    run.advance(2000)
+    assert run.controller.axis.profile.velocity == pytest.approx(run.controller.axis.scaling.velocity(10))
+
+
+def test_syncp_catches_up_then_cpos_follows_mapos_exactly():
+    """DG 944-1140: CPOS = MAPOS · gear + offset; the start is caught up within VEL/ACC, then locked."""
+    settings = {"SYNCFACTS": 55, "SYNCFACTM": 32, "SYNCPOSOFFS": 1000, **FAST}
+    run = start("VEL 100\nACC 100\nDEC 100\nSYNCP\n"
+                "WHILE 1 DO\n  IF (SYNCSTAT & 4) THEN\n    OUT 1 1\n  ELSE\n    OUT 1 0\n  ENDIF\nENDWHILE\n",
+                settings=settings, master=MasterConfig(velocity=20.0, start_position_qc=20000))
+    ctl = run.controller
+    run.advance(200)
+    assert not ctl.axis.sync.locked and ctl.io.outputs.get(1, 0) == 0  # still catching up
+    peak = 0.0
+    for _ in range(30):
+        run.advance(100)
+        peak = max(peak, abs(ctl.axis.profile.velocity))
+    assert peak <= ctl.axis.scaling.velocity(100) + 1e-9
+    assert ctl.axis.sync.locked
+    for _ in range(50):
+        run.advance(7)
+        assert ctl.uu(ctl.axis.cpos) == (ctl.master.mapos + 1000) * 55 // 32
+    assert abs(ctl.syncerr()) < 100
+    assert ctl.syncstat() & 4 and ctl.params.get(3460) & 4
+    assert ctl.io.outputs.get(1) == 1                                  # DG 1055: IF (SYNCSTAT & 4)
+    assert not run.errors
+
+
+def test_syncerr_is_signed_with_negative_syncaccuracy():
+    """DG 9430-9460: SYNCACCURACY < 0 reports SYNCERR with its sign (target − actual: + = slave behind)."""
+    for accuracy, sign in ((1000, 1), (-1000, 1)):
+        run = start("VEL 100\nACC 100\nSYNCP\n" + LOOP, settings={"SYNCACCURACY": accuracy},
+                    master=MasterConfig(velocity=20.0, start_position_qc=50000))
+        run.advance(50)
+        assert run.controller.syncerr() * sign > 0     # behind the target
+    run = start("VEL 100\nACC 100\nSYNCP\n" + LOOP, settings={"SYNCACCURACY": -1000},
+                master=MasterConfig(velocity=-20.0, start_position_qc=-50000))
+    run.advance(50)
+    assert run.controller.syncerr() < 0                # the target is below: signed negative
+    run = start("VEL 100\nACC 100\nSYNCP\n" + LOOP, settings={"SYNCACCURACY": 1000},
+                master=MasterConfig(velocity=-20.0, start_position_qc=-50000))
+    run.advance(50)
+    assert run.controller.syncerr() > 0                # absolute
+
+
+def test_movesyncorigin_and_syncposoffs_shift_the_slave_within_the_limits():
+    run = start("VEL 100\nACC 100\nDEC 100\nSYNCP\nDELAY 500\nMOVESYNCORIGIN 4000\nDELAY 1500\n"
+                "SET SYNCPOSOFFS -2000\n" + LOOP,
+                settings={"SYNCFACTS": 3, "SYNCFACTM": 2, **FAST}, master=MasterConfig(velocity=10.0))
+    ctl = run.controller
+    run.advance(500)
+    assert ctl.axis.sync.locked
+    last_v = ctl.axis.profile.velocity
+    amax = ctl.axis.scaling.acceleration(100)
+    for _ in range(1500):
+        run.advance(1)
+        v = ctl.axis.profile.velocity
+        assert abs(v - last_v) <= amax + 1e-9  # smooth: no jump of the commanded velocity
+        last_v = v
+    assert ctl.axis.sync.locked
+    assert ctl.uu(ctl.axis.cpos) == (ctl.master.mapos + 4000) * 3 // 2
+    run.advance(1500)
+    assert ctl.axis.sync.locked
+    assert ctl.uu(ctl.axis.cpos) == (ctl.master.mapos + 4000 - 2000) * 3 // 2
+    assert not run.errors
+
+
+def test_defsyncorigin_relates_a_master_and_a_slave_position():
+    """CR 891-975 sample: master 2000 qc ↔ slave 4000 qc, then master 3000 ↔ slave 5000 (gear 1:1)."""
+    run = start("DEFSYNCORIGIN 2000 4000\nVEL 100\nACC 100\nSYNCP\n" + LOOP, settings=FAST,
+                master=MasterConfig(velocity=1.0, start_position_qc=1999))
+    ctl = run.controller
+    run.advance(3000)
+    assert ctl.axis.sync.locked
+    assert ctl.uu(ctl.axis.cpos) == ctl.master.mapos + 2000
+
+
+def test_motor_stop_leaves_sync_with_dec_and_continue_does_not_resume():
+    run = start("VEL 100\nACC 100\nDEC 50\nSYNCV\nDELAY 1500\nMOTOR STOP\nPRINT AXEND\nCONTINUE\nDELAY 100\n"
+                "PRINT AXEND\n" + LOOP, settings=FAST, master=MasterConfig(velocity=30.0))
+    ctl = run.controller
+    run.advance(1500)
+    assert ctl.axis.mode == "sync"
+    run.advance(1)
+    v0 = ctl.axis.profile.velocity
+    run.advance(100)
+    assert ctl.axis.mode == "stopping"
+    assert v0 - ctl.axis.profile.velocity == pytest.approx(100 * ctl.axis.scaling.acceleration(50), rel=0.02)
+    run.advance(1000)
+    assert ctl.axis.mode == "idle" and ctl.axis.sync is None
+    assert ctl.axis.profile.velocity == 0.0 and run.prints == ["1", "1"]
+    assert ctl.syncstat() == 0 and ctl.syncerr() == 0
+
+
+def test_sync_needs_no_pending_error_and_esc_stops_the_virtual_master():
+    run = start("PULSVEL 1000\nSYNCP\n" + LOOP)
+    run.advance(500)
+    run.controller.break_program()
+    run.advance(500)
+    assert run.controller.master.velocity == 0.0
+    assert run.controller.axis.mode == "idle"
