@@ -1,0 +1,53 @@
+"""Moving a configuration (.zbc) between a file and a controller, through a comms Link only.
+
+Download = Controller → Parameters → Restore from file / `motiontool run --config` / the CAM editor's "Write to
+controller": parameters first (raw values over the link, each checked by the controller), then the array memory
+is replaced by the file's arrays in DIM order.  Upload = "Save to file" / "Read from controller": every
+savable parameter and every array; curve arrays that decode become editable curves again.  Qt-free.
+"""
+
+from __future__ import annotations
+
+from motiontool.camcurve.layout import CurveArrayError, decode
+from motiontool.camcurve.model import CurveError
+from motiontool.cameditor.zbc import ArrayEntry, ConfigError, ConfigFile
+from motiontool.comms.link import Link
+from motiontool.comms.protocol import LinkError
+from motiontool.paramdb import database
+
+
+def download_config(link: Link, config: ConfigFile) -> None:
+    """Write ``config``'s parameters and arrays to the controller; raises ConfigError naming what failed."""
+    db = database()
+    for number, value in config.parameters.items():
+        parameter = db.get(number)
+        try:
+            link.write_parameter(parameter.number, parameter.to_raw(value))
+        except LinkError as exc:
+            raise ConfigError(f"parameter {parameter.label}: the controller refused {value}: {exc}") from None
+    if config.arrays:
+        try:
+            link.call("restore_arrays", arrays=[{"name": a.name, "values": list(a.values)} for a in config.arrays])
+        except LinkError as exc:
+            raise ConfigError(f"arrays: the controller refused them: {exc}") from None
+
+
+def upload_config(link: Link) -> ConfigFile:
+    """Read every writable parameter and every array from the controller; curve arrays become curves."""
+    config = ConfigFile()
+    for parameter in database():
+        if parameter.read_only:
+            continue
+        config.parameters[parameter.number] = parameter.from_raw(link.read_parameter(parameter.number))
+    for info in link.call("list_arrays"):
+        values = link.read_array(info["index"])
+        entry = ArrayEntry(info["name"], values)
+        try:
+            curve = decode(values).to_curve()
+        except (CurveArrayError, CurveError):
+            curve = None  # an ordinary array
+        if curve is not None and config.curve(curve.name) is None:
+            entry.curve = curve.name
+            config.curves.append(curve)
+        config.arrays.append(entry)
+    return config

@@ -1,0 +1,1 @@
+"""Tests of the CAM editor file formats and the cam CLI."""
