@@ -47,10 +47,8 @@ def _cmd_run(args: argparse.Namespace) -> int:
 
     options = RunOptions(seconds=args.seconds, settings=args.set, inputs=args.input, include_dirs=args.include,
                          trace=args.trace, signals=[s for s in args.signals.split(",") if s.strip()],
-                         trace_interval_ms=args.interval, record=args.record, realtime=args.realtime)
-    if args.config is not None:
-        print("motiontool run: --config needs the .zbc reader, which is not built yet", file=sys.stderr)
-        return 1
+                         trace_interval_ms=args.interval, record=args.record, realtime=args.realtime,
+                         config=args.config)
     return run_program(args.file, options)
 
 
@@ -101,6 +99,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--record", type=Path, metavar="OUT.csv", help="write every TESTSETP recording as CSV")
     p.add_argument("--realtime", action="store_true", help="pace virtual time at real time")
     p.set_defaults(func=_cmd_run)
+
+    from motiontool.cameditor import camcli
+
+    camcli.add_parser(sub)
     return parser
 
 

@@ -11,6 +11,8 @@ from pathlib import Path
 from typing import TextIO
 
 from motiontool.aposs.driver import compile_source
+from motiontool.cameditor.transfer import download_config
+from motiontool.cameditor.zbc import ConfigError, read_config
 from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.protocol import LinkError, LinkEvent
 
@@ -29,6 +31,7 @@ class RunOptions:
     trace_interval_ms: int = 1
     record: Path | None = None
     realtime: bool = False
+    config: Path | None = None                              # .zbc/.cnf loaded before the start
 
 
 def run_program(path: Path, options: RunOptions, out: TextIO = sys.stdout, err: TextIO = sys.stderr) -> int:
@@ -37,6 +40,13 @@ def run_program(path: Path, options: RunOptions, out: TextIO = sys.stdout, err: 
         print(d.format(), file=err)
     if not result.ok:
         return EXIT_COMPILE
+    config = None
+    if options.config is not None:
+        try:
+            config = read_config(options.config)
+        except ConfigError as exc:
+            print(str(exc), file=err)
+            return EXIT_COMPILE
     link = EmbeddedLink(realtime_factor=1.0 if options.realtime else None)
     state = {"error": False}
     trace_rows: list[list] = []
@@ -55,6 +65,12 @@ def run_program(path: Path, options: RunOptions, out: TextIO = sys.stdout, err: 
 
     link.subscribe(on_event)
     try:
+        if config is not None:
+            try:
+                download_config(link, config)
+            except ConfigError as exc:
+                print(f"{options.config}: {exc}", file=err)
+                return EXIT_COMPILE
         for setting in options.settings:
             key, _, value = setting.partition("=")
             if not value:

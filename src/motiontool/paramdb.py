@@ -110,6 +110,19 @@ class Parameter:
                                  f"{self._fmt(self.minimum)}..{self._fmt(self.maximum)}")
         return value if self._decimals is None else round(value, self._decimals)
 
+    def to_raw(self, value: int | float) -> int:
+        """Display value → the raw integer GET/SET and the links use (RAMPMIN 1.000 s → 1000, index -3)."""
+        if self.conversion_index:
+            return round(value * 10 ** (-self.conversion_index))
+        return int(round(value))
+
+    def from_raw(self, raw: int) -> int | float:
+        """Raw integer → display value (1000 → 1.0 for conversion index -3); integral parameters stay int."""
+        if self.conversion_index:
+            value = raw * 10 ** self.conversion_index
+            return round(value, self._decimals) if self._decimals is not None else value
+        return int(raw)
+
     def format_line(self) -> str:
         """One-line summary: ``"32-60 KPROP 30 [0..100000] Proportional Factor"``."""
         return (f"{self.number} {self.name or '-'} {self._fmt(self.default)} "

@@ -22,6 +22,7 @@ OPERATIONS: dict[str, tuple[str, ...]] = {
     "list_arrays": (),                               # → [{"index", "name", "size"}]
     "read_array": ("index",),                        # 0-based DIM position → [int]
     "write_array": ("index", "values"),
+    "restore_arrays": ("arrays",),                   # [{"name", "values"}] in DIM order: replaces the array memory
     "download": ("image", "number", "name"),         # image: base64 of ProgramImage.to_bytes(); number None = temporary
     "list_programs": (),
     "delete_program": ("number",),

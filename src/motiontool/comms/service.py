@@ -9,6 +9,7 @@ from typing import Any
 
 from motiontool.aposs.image import ImageError, ProgramImage
 from motiontool.comms.protocol import OPERATIONS, PROTOCOL_VERSION, LinkEvent, Request, Response, Status
+from motiontool.kernel.arrays import MAX_ARRAY_ELEMENTS
 from motiontool.kernel.controller import Controller, Event
 from motiontool.kernel.errors import ControllerError
 from motiontool.kernel.sysvars import read_sysvar, sysvar_name
@@ -126,6 +127,19 @@ class ControllerService:
         if len(values) > len(array):
             raise ControllerError(171, f"{len(values)} values for {array.name}[{len(array)}]")
         array.data[:len(values)] = [int(v) for v in values]
+
+    def op_restore_arrays(self, arrays) -> None:
+        """Replace the controller's array memory (Restore from file / .zbc download, DG 2886-2900): arrays
+        [{"name", "values"}] in DIM order; a program's DIMs then find them by position (C:1024-1041)."""
+        if self.controller.program_state == "running":
+            raise ValueError("stop the program before restoring arrays (a running program uses them)")
+        memory = self.controller.arrays
+        if sum(len(a["values"]) for a in arrays) > MAX_ARRAY_ELEMENTS:
+            raise ControllerError(175, f"{len(arrays)} arrays do not fit the array memory")
+        memory.delete()
+        for i, entry in enumerate(arrays):
+            values = [int(v) for v in entry["values"]]
+            memory.dim(i, str(entry["name"]), [len(values)]).data[:] = values
 
     def op_download(self, image, number=None, name="") -> None:
         program = ProgramImage.from_bytes(base64.b64decode(image))

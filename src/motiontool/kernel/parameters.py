@@ -15,9 +15,7 @@ from motiontool.paramdb import Parameter, ParameterDatabase, ParameterError, dat
 
 def raw_value(parameter: Parameter, value: int | float) -> int:
     """Display value → raw integer (RAMPMIN 1.000 s → 1000 with conversion index -3)."""
-    if parameter.conversion_index:
-        return round(value * 10 ** (-parameter.conversion_index))
-    return int(round(value))
+    return parameter.to_raw(value)
 
 
 class ParameterStore:
