@@ -87,6 +87,18 @@ def test_breakpoints_single_step_and_variables():
     assert prints == ["41"]
 
 
+def test_start_with_step_stops_before_the_first_statement():
+    """DG 2432-2434: Prepare Singlestep downloads the debug build "but does not start" it: the program
+    stands before its first executable statement."""
+    link = EmbeddedLink()
+    link.download(image("// first\nDIM a[2]\nx = 5\nPRINT x\n", debug=True))
+    link.start(step=True)
+    link.advance(10)
+    status = link.status()
+    assert status.program_state == "break" and status.line == 3
+    assert link.call("read_variables", names=["x"]) == [0]
+
+
 def test_threaded_link_paces_virtual_time():
     """Decision K10: the IDE's link runs the kernel on its own thread at real time × factor."""
     link = EmbeddedLink(realtime_factor=1.0)

@@ -3,28 +3,11 @@
 import subprocess
 import sys
 
-import pytest
-from PySide6.QtCore import QSettings, Qt
+from PySide6.QtCore import Qt
 
 from motiontool.ui.main_window import MainWindow
 
 APOSS_MENUS = ["File", "Edit", "Development", "Controller", "Tools", "Settings", "Window", "Help"]
-
-
-@pytest.fixture
-def window(qtbot, tmp_path):
-    settings = QSettings(str(tmp_path / "settings.ini"), QSettings.Format.IniFormat)
-    w = MainWindow(settings=settings, realtime_factor=50.0)
-    w.ask_to_save = False
-    qtbot.addWidget(w)
-    w.show()
-    qtbot.waitExposed(w)
-    w.activateWindow()
-    yield w
-    for editor in w.editors():  # no "Save changes?" question at teardown
-        editor.document().setModified(False)
-    w.bridge.detach(close=False)
-    w.controllers.close()
 
 
 def test_menu_bar_has_the_aposs_menus(window):

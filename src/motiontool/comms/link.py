@@ -55,8 +55,9 @@ class Link(ABC):
     def download(self, image_bytes: bytes, number: int | None = None, name: str = "") -> None:
         self.call("download", image=base64.b64encode(image_bytes).decode("ascii"), number=number, name=name)
 
-    def start(self, number: int | None = None) -> None:
-        self.call("start", number=number)
+    def start(self, number: int | None = None, step: bool = False) -> None:
+        """Start a program; with `step` (Prepare Singlestep) it stops before its first statement."""
+        self.call("start", number=number, step=step)
 
     def break_program(self) -> None:
         self.call("break")

@@ -26,7 +26,7 @@ OPERATIONS: dict[str, tuple[str, ...]] = {
     "download": ("image", "number", "name"),         # image: base64 of ProgramImage.to_bytes(); number None = temporary
     "list_programs": (),
     "delete_program": ("number",),
-    "start": ("number",),                            # None = the temporary program
+    "start": ("number", "step"),                     # None = the temporary program; step: stop before statement 1
     "break": (),                                     # [Esc]
     "continue": (),
     "set_input": ("number", "value"),                # simulated controllers only

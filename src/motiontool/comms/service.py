@@ -158,7 +158,7 @@ class ControllerService:
     def op_delete_program(self, number) -> None:
         self.programs.pop(number, None)
 
-    def op_start(self, number=None) -> None:
+    def op_start(self, number=None, step=False) -> None:
         program = self.temporary if number is None else self.programs.get(number)
         if program is None:
             raise ValueError("no program downloaded" if number is None else f"no program {number}")
@@ -167,6 +167,8 @@ class ControllerService:
             raise RuntimeError("the controller is executing a program")
         c.load(program)
         c.start()
+        if step:  # Prepare Singlestep (DG 2432-2434): loaded, stopped before the first statement
+            c.single_step = True
 
     def op_break(self) -> None:
         self.controller.break_program()

@@ -118,6 +118,9 @@ class Development:
         memory, start."""
         if not self.connect_default():
             return False
+        debugger = getattr(self.w, "debugger", None)
+        if debugger is not None and debugger.active:  # F5 runs the normal build: leave the debug session
+            debugger.end()
         link = self.w.bridge.link
         try:
             state = link.status().program_state

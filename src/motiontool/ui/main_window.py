@@ -75,8 +75,12 @@ class MainWindow(QMainWindow):
         self.statusBar().addPermanentWidget(self.controller_label)
         self.statusBar().addPermanentWidget(self.cursor_label)
 
+        from motiontool.ui.debugger import Debugger
         from motiontool.ui.menus import build_menus
 
+        self.debugger = Debugger(self)
+        self.addDockWidget(Qt.DockWidgetArea.BottomDockWidgetArea, self.debugger.watch)
+        self.debugger.watch.hide()
         build_menus(self)
         self.bridge.printed.connect(lambda t, text, cid: self.messages.controller(cid, text))
         self.bridge.controller_error.connect(self._controller_error)

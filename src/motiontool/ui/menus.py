@@ -50,9 +50,10 @@ def build_menus(w) -> None:
         ("&Development", [
             ("&Execute", "F5", lambda: dev.execute()), ("&Break", "Esc", dev.break_program),
             ("C&ontinue", None, dev.continue_program), None, ("Messages", None, "messages"), None,
-            ("Prepare Singlestep", None, None), ("Go", None, None), ("Singlestep", "F9", None),
-            ("End Debug", None, None), None, ("Watch Add", None, None), ("Watch Start", None, None),
-            ("Watch Stop", None, None), None, ("&Syntax Check", "F4", dev.syntax_check),
+            ("Prepare Singlestep", None, w.debugger.prepare), ("Go", None, w.debugger.go),
+            ("Singlestep", "F9", w.debugger.step), ("End Debug", None, w.debugger.end), None,
+            ("Watch Add", None, w.debugger.watch_add), ("Watch Start", None, w.debugger.watch_start),
+            ("Watch Stop", None, w.debugger.watch_stop), None, ("&Syntax Check", "F4", dev.syntax_check),
             ("Compile to file...", None, lambda: dev.compile_to_file()), None,
             ("Break all", None, dev.break_all), ("Start all", None, dev.start_all), ("Download all", None, None),
             ("Delete Programs all", None, None), None, ("Select Controller...", None, lambda: _select_controller(w)),

@@ -29,7 +29,6 @@ from PySide6.QtGui import (
     QPalette,
     QResizeEvent,
     QTextBlock,
-    QTextBlockUserData,
     QTextCharFormat,
     QTextCursor,
     QTextFormat,
@@ -39,6 +38,7 @@ from PySide6.QtWidgets import QCompleter, QMenu, QPlainTextEdit, QTextEdit, QToo
 from motiontool.ui.editor import lang, outline
 from motiontool.ui.editor.bookmarks import BookmarkStore, next_bookmark
 from motiontool.ui.editor.completion import CompletionModel, HintDelegate
+from motiontool.ui.editor.debug_marks import BlockData, DebugMarksMixin
 from motiontool.ui.editor.editing import EditingMixin
 from motiontool.ui.editor.gutter import LineNumberArea
 from motiontool.ui.editor.highlighter import AposHighlighter
@@ -73,25 +73,19 @@ KEYMAP: dict[str, str | tuple] = {
 }
 
 
-class BlockData(QTextBlockUserData):
-    """Per-line data that moves with the line as text is edited."""
-
-    def __init__(self) -> None:
-        super().__init__()
-        self.bookmark = False
-
-
 class _Diagnostic(NamedTuple):
     cursor: QTextCursor  # selects the token; Qt keeps it in place while the text is edited
     severity: str        # "error" | "warning"
     message: str
 
 
-class CodeEditor(EditingMixin, SearchMixin, MacroMixin, QPlainTextEdit):
+class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, QPlainTextEdit):
     cursorLineColChanged = Signal(int, int)  # 1-based line and column for the status bar (ide-spec 1.5)
     bookmarksChanged = Signal()
     macroRecordingChanged = Signal(bool)
     openLocationRequested = Signal(str, int, int)  # a Find in Files hit in another file: path, line, column
+    breakpointsChanged = Signal()
+    variableEditRequested = Signal(str)  # right-click on a variable while debugging (ide-spec 3.9)
 
     def __init__(self, parent: QWidget | None = None, settings: EditorSettings | None = None) -> None:
         super().__init__(parent)
@@ -327,6 +321,9 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, QPlainTextEdit):
         line.format.setProperty(QTextFormat.Property.FullWidthSelection, True)
         line.cursor = QTextCursor(self.textCursor().block())
         selections.append(line)
+        debug = self.debug_selection()
+        if debug is not None:
+            selections.append(debug)
         for d in self._diagnostics:
             sel = QTextEdit.ExtraSelection()
             sel.format.setUnderlineStyle(QTextCharFormat.UnderlineStyle.SpellCheckUnderline)
@@ -538,6 +535,7 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, QPlainTextEdit):
             return
         self._completer.popup().hide()
         super().mousePressEvent(event)
+        self.debug_mouse_press(event)
 
     def mouseDoubleClickEvent(self, event: QMouseEvent) -> None:  # noqa: N802 (Qt override)
         if event.button() == Qt.MouseButton.MiddleButton:  # wheel double-click selects the line
@@ -545,6 +543,8 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, QPlainTextEdit):
             cursor.movePosition(QTextCursor.MoveOperation.StartOfBlock)
             cursor.movePosition(QTextCursor.MoveOperation.EndOfBlock, QTextCursor.MoveMode.KeepAnchor)
             self.setTextCursor(cursor)
+            return
+        if self.debug_double_click(event):
             return
         super().mouseDoubleClickEvent(event)
 
@@ -579,4 +579,11 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, QPlainTextEdit):
         return menu
 
     def contextMenuEvent(self, event: QContextMenuEvent) -> None:  # noqa: N802 (Qt override)
-        self.build_context_menu().exec(event.globalPos())
+        menu = self.build_context_menu()
+        name = self.variable_at(event.pos()) if self.variable_value is not None else None
+        if name and self.variable_value(name) is not None:
+            menu.insertSeparator(menu.actions()[0])
+            action = menu.addAction(f"Change value of {name}...")
+            menu.insertAction(menu.actions()[0], action)
+            action.triggered.connect(lambda _checked=False, n=name: self.variableEditRequested.emit(n))
+        menu.exec(event.globalPos())

@@ -79,6 +79,10 @@ class LineNumberArea(QWidget):
                 if editor.has_bookmark(block):
                     self._bookmark_mark(painter, y, line_h, QColor(colors.bookmark))
                     painter.setPen(plain_pen)
+                dot = editor.debug_dot(block)
+                if dot is not None:  # blue: executable statement, red: breakpoint (ide-spec 3.1, 3.5)
+                    self._diagnostic_mark(painter, y, line_h, QColor(dot))
+                    painter.setPen(plain_pen)
             top += height
             block = block.next()
         painter.end()

@@ -1,0 +1,220 @@
+"""Development → Prepare Singlestep / Go / Singlestep / End Debug and the watch (ide-spec 3.1-3.14).
+
+The debug session compiles the current program in debug mode (statement stops), downloads it, starts it
+stopped before its first statement and then follows the controller's status: whenever the program stands in
+"break" the editor shows the next statement in yellow.  Breakpoints are sent to the controller whenever they
+change.  Everything goes through the window's LinkBridge.
+"""
+
+from __future__ import annotations
+
+from PySide6.QtCore import QObject, QTimer
+from PySide6.QtWidgets import QInputDialog
+
+from motiontool.comms.protocol import LinkError
+from motiontool.ui.watch import WatchPane
+
+WATCH_INTERVAL_MS = 250
+
+
+def format_value(value) -> str:
+    if isinstance(value, float):
+        text = f"{value:.6f}".rstrip("0")
+        return text + "0" if text.endswith(".") else text
+    return str(value)
+
+
+class Debugger(QObject):
+    def __init__(self, window) -> None:
+        super().__init__(window)
+        self.w = window
+        self.editor = None
+        self.watch = WatchPane(window)
+        self.watch.set_reader(self.read_watch)
+        self._watch_timer = QTimer(self, interval=WATCH_INTERVAL_MS, timeout=self.refresh_watch)
+        window.bridge.status_changed.connect(self._status_changed)
+
+    @property
+    def active(self) -> bool:
+        return self.editor is not None
+
+    def _link(self):
+        return self.w.bridge.link
+
+    def _report(self, exc: Exception) -> None:
+        self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: {exc}")
+
+    # --- session ---------------------------------------------------------------------------------------
+    def prepare(self) -> bool:
+        """Prepare Singlestep (DG L2432-2434, L3364-3382): compile in debug mode, download, do not run."""
+        dev = self.w.development
+        if self.active:
+            self.end()
+        if not dev.connect_default():
+            return False
+        outcome = dev.compile_current(debug=True)
+        if outcome is None:
+            return False
+        messages = self.w.messages
+        if not outcome.result.ok:
+            for d in outcome.result.diagnostics:
+                messages.ide(d.format())
+            messages.ide("Compiling debug failed: no debug session")
+            self.w.current_editor().goto_line(*outcome.first_error)
+            return False
+        image = outcome.result.image
+        size = len(image.to_bytes())
+        messages.ide(f"Compiling debug ok ({size} bytes)")
+        editor = self.w.current_editor()
+        link = self._link()
+        try:
+            if link.status().program_state == "running":
+                link.break_program()
+            link.download(image.to_bytes(), name=image.name)
+            messages.ide(f"Loading {size} bytes ok")
+            editor.set_debug_lines({e.line for e in image.lines if e.file == 0})
+            link.call("set_breakpoints", lines=[n for n in editor.breakpoints() if n in editor.debug_lines])
+            link.start(step=True)
+        except LinkError as exc:
+            editor.end_debug()
+            self._report(exc)
+            return False
+        self.editor = editor
+        editor.variable_value = self.read_value
+        editor.breakpointsChanged.connect(self._send_breakpoints)
+        editor.variableEditRequested.connect(self.change_value)
+        self.watch.set_variables(program_variables(image), program_arrays(image))
+        messages.ide("Prepare stepping ok")
+        self.w.bridge.poll()
+        return True
+
+    def go(self) -> None:
+        """Go (DG L2436-2438): run to the next breakpoint."""
+        if self.active:
+            self._call(lambda link: link.continue_program())
+
+    def step(self) -> None:
+        """Singlestep F9 (DG L2440-2442): run the yellow statement, stop before the next one."""
+        if self.active:
+            self.editor.set_debug_current(None)
+            self._call(lambda link: link.call("step"))
+
+    def end(self) -> None:
+        """End Debug (DG L2448-2450): leave debug mode; breakpoints stay for the next run."""
+        if not self.active:
+            return
+        editor, self.editor = self.editor, None
+        editor.breakpointsChanged.disconnect(self._send_breakpoints)
+        editor.variableEditRequested.disconnect(self.change_value)
+        editor.end_debug()
+        link = self._link()
+        if link is not None:
+            try:
+                if link.status().program_state in ("running", "break"):
+                    link.break_program()
+                link.call("set_breakpoints", lines=[])
+            except LinkError as exc:
+                self._report(exc)
+        self.w.messages.ide("Debug ended")
+
+    def _call(self, action) -> None:
+        link = self._link()
+        if link is None:
+            self._report(LinkError("not connected"))
+            return
+        try:
+            action(link)
+        except LinkError as exc:
+            self._report(exc)
+        self.w.bridge.poll()
+
+    def _send_breakpoints(self) -> None:
+        self._call(lambda link: link.call("set_breakpoints",
+                                          lines=[n for n in self.editor.breakpoints() if n in self.editor.debug_lines]))
+
+    def _status_changed(self, status) -> None:
+        if not self.active:
+            return
+        if status.program_state == "break" and status.line:
+            self.editor.set_debug_current(status.line)
+        elif status.program_state in ("ended", "error", "idle"):
+            self.editor.set_debug_current(None)
+        else:
+            self.editor.set_debug_current(None)
+
+    # --- variables -------------------------------------------------------------------------------------
+    def read_watch(self, kind: str, key: str):
+        link = self._link()
+        if link is None:
+            return "not connected"
+        if kind == "parameter":
+            return link.read_parameter(key)
+        if kind == "signal":
+            return link.call("read_signals", signals=[key])[0]
+        return link.call("read_variables", names=[key])[0]
+
+    def read_value(self, name: str) -> str | None:
+        """The value for the editor's click popup (DG L3440-3444), None when `name` is not a variable."""
+        link = self._link()
+        if link is None:
+            return None
+        try:
+            return format_value(link.call("read_variables", names=[name])[0])
+        except LinkError:
+            return None
+
+    def change_value(self, name: str) -> None:
+        """Right-click → change the variable on the controller (DG L3457-3459)."""
+        current = self.read_value(name) or "0"
+        text, ok = QInputDialog.getText(self.w, "Change value", f"New value of {name}:", text=current)
+        if ok:
+            self.write_value(name, text)
+
+    def write_value(self, name: str, text: str) -> bool:
+        try:
+            value = float(text) if any(c in text for c in ".eE") else int(text, 0)
+        except ValueError:
+            self.w.messages.ide(f"Change value: {text!r} is not a number")
+            return False
+        try:
+            self._link().call("write_variable", name=name, value=value)
+        except (LinkError, AttributeError) as exc:
+            self._report(exc)
+            return False
+        self.refresh_watch()
+        return True
+
+    # --- watch (ide-spec 3.12, 3.13) -------------------------------------------------------------------
+    def watch_add(self) -> None:
+        self.watch.show_add_dialog()
+
+    def watch_start(self) -> None:
+        self.watch.show()
+        self.refresh_watch()
+        self._watch_timer.start()
+
+    def watch_stop(self) -> None:
+        self._watch_timer.stop()
+
+    @property
+    def watching(self) -> bool:
+        return self._watch_timer.isActive()
+
+    def refresh_watch(self) -> None:
+        if self._link() is not None:
+            self.watch.refresh()
+
+
+def program_variables(image) -> list[str]:
+    """The program's scalar variables (the cross-reference), without the compiler's temporaries."""
+    return [v.name for v in image.globals if not v.name.startswith("$")]
+
+
+def program_arrays(image) -> list[tuple[str, int]]:
+    out = []
+    for v in image.dims + image.arrays:
+        size = 1
+        for d in v.dims:
+            size *= d
+        out.append((v.name, size))
+    return out

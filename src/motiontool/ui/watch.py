@@ -1,0 +1,210 @@
+"""The Watch pane and the Watch Add dialog (ide-spec 3.12-3.13, DG L2452-2477).
+
+Entries are program variables (the cross-reference of the debug build), array elements (only the first 250
+elements of an array can be watched, DG L2467), axis process data and parameters.  The pane does not talk to
+the controller itself: a reader `(kind, key) -> value` is set by the debugger.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from PySide6.QtCore import Qt
+from PySide6.QtGui import QKeyEvent
+from PySide6.QtWidgets import (
+    QAbstractItemView,
+    QComboBox,
+    QDialog,
+    QDialogButtonBox,
+    QDockWidget,
+    QHBoxLayout,
+    QLabel,
+    QListWidget,
+    QSpinBox,
+    QTableWidget,
+    QTableWidgetItem,
+    QTreeWidget,
+    QTreeWidgetItem,
+    QVBoxLayout,
+    QWidget,
+)
+
+MAX_ARRAY_WATCH = 250
+HINT_ENTRIES = 12
+FORMATS = ("Decimal", "Hexadecimal", "Binary")
+AXIS_PROCESS_DATA = ("APOS", "CPOS", "AVEL", "TRACKERR", "AXEND", "STAT", "MAPOS", "MAVEL", "SYNCERR", "IPOS")
+PARAMETERS = ("KPROP", "KDER", "KINT", "FFVEL", "VELMAX", "POSERR", "TESTVAL")
+
+
+@dataclass
+class WatchEntry:
+    kind: str       # "variable" | "signal" | "parameter"
+    key: str        # name, "name[3]", signal or parameter name
+    fmt: str = "Decimal"
+
+    @property
+    def label(self) -> str:
+        if self.kind == "variable":
+            return self.key
+        return f"Axis 1: {self.key}" + (" (parameter)" if self.kind == "parameter" else "")
+
+
+def format_watch(value, fmt: str) -> str:
+    if isinstance(value, int) and not isinstance(value, bool):
+        if fmt == "Hexadecimal":
+            return f"0x{value & 0xFFFFFFFF:08X}"
+        if fmt == "Binary":
+            return f"{value & 0xFFFFFFFF:032b}"
+    if isinstance(value, float):
+        text = f"{value:.6f}".rstrip("0")
+        return text + "0" if text.endswith(".") else text
+    return str(value)
+
+
+class _Table(QTableWidget):
+    def __init__(self, pane: WatchPane) -> None:
+        super().__init__(0, 2)
+        self.pane = pane
+        self.setHorizontalHeaderLabels(["Name", "Value"])
+        self.horizontalHeader().setStretchLastSection(True)
+        self.verticalHeader().hide()
+        self.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
+        self.setSelectionBehavior(QAbstractItemView.SelectionBehavior.SelectRows)
+
+    def keyPressEvent(self, event: QKeyEvent) -> None:  # noqa: N802 (Qt override)
+        if event.key() == Qt.Key.Key_Delete and self.currentRow() >= 0:  # DG L2456: Delete removes the entry
+            self.pane.remove(self.currentRow())
+            return
+        super().keyPressEvent(event)
+
+
+class WatchPane(QDockWidget):
+    def __init__(self, parent=None) -> None:
+        super().__init__("Watch", parent)
+        self.setObjectName("watch")
+        self.entries: list[WatchEntry] = []
+        self.variables: list[str] = []
+        self.arrays: list[tuple[str, int]] = []
+        self._reader: Callable[[str, str], object] | None = None
+        body = QWidget()
+        layout = QVBoxLayout(body)
+        layout.setContentsMargins(2, 2, 2, 2)
+        self.table = _Table(self)
+        self.hint = QLabel("Many entries are watched: the Oscilloscope shows them better (Tools → Oscilloscope).")
+        self.hint.setWordWrap(True)
+        self.hint.hide()
+        layout.addWidget(self.table)
+        layout.addWidget(self.hint)
+        self.setWidget(body)
+        self.hide()
+
+    def set_reader(self, reader: Callable[[str, str], object]) -> None:
+        self._reader = reader
+
+    def set_variables(self, variables: list[str], arrays: list[tuple[str, int]]) -> None:
+        self.variables, self.arrays = list(variables), list(arrays)
+
+    def add(self, entry: WatchEntry) -> None:
+        if any(e.kind == entry.kind and e.key.upper() == entry.key.upper() for e in self.entries):
+            return
+        self.entries.append(entry)
+        row = self.table.rowCount()
+        self.table.insertRow(row)
+        self.table.setItem(row, 0, QTableWidgetItem(entry.label))
+        self.table.setItem(row, 1, QTableWidgetItem(""))
+        self.hint.setVisible(len(self.entries) > HINT_ENTRIES)
+        self.show()
+
+    def remove(self, row: int) -> None:
+        del self.entries[row]
+        self.table.removeRow(row)
+        self.hint.setVisible(len(self.entries) > HINT_ENTRIES)
+
+    def values(self) -> list[str]:
+        return [self.table.item(r, 1).text() for r in range(self.table.rowCount())]
+
+    def refresh(self) -> None:
+        if self._reader is None:
+            return
+        for row, entry in enumerate(self.entries):
+            try:
+                text = format_watch(self._reader(entry.kind, entry.key), entry.fmt)
+            except Exception as exc:  # noqa: BLE001 - a failed read shows in its row, the others go on
+                text = f"? {exc}"
+            self.table.item(row, 1).setText(text)
+
+    def show_add_dialog(self) -> None:
+        WatchAddDialog(self).exec()
+
+
+class WatchAddDialog(QDialog):
+    """Left: the program's variables and arrays; right: system objects; a display format; Add."""
+
+    def __init__(self, pane: WatchPane) -> None:
+        super().__init__(pane.parentWidget())
+        self.pane = pane
+        self.setWindowTitle("Watch Add")
+        self.program = QListWidget()
+        for name in pane.variables:
+            self.program.addItem(name)
+        for name, size in pane.arrays:
+            self.program.addItem(f"{name}[{size}]")
+        self.system = QTreeWidget()
+        self.system.setHeaderHidden(True)
+        for title, names, kind in (("0x2500 Axis 1 Process Data", AXIS_PROCESS_DATA, "signal"),
+                                   ("Axis 1 Parameters", PARAMETERS, "parameter")):
+            top = QTreeWidgetItem([title])
+            for name in names:
+                item = QTreeWidgetItem([name])
+                item.setData(0, Qt.ItemDataRole.UserRole, kind)
+                top.addChild(item)
+            self.system.addTopLevelItem(top)
+            top.setExpanded(True)
+        self.index = QSpinBox()
+        self.index.setRange(1, 1)
+        self.index.setEnabled(False)
+        self.format = QComboBox()
+        self.format.addItems(FORMATS)
+        lists = QHBoxLayout()
+        lists.addWidget(self.program)
+        lists.addWidget(self.system)
+        options = QHBoxLayout()
+        options.addWidget(QLabel("Array index"))
+        options.addWidget(self.index)
+        options.addWidget(QLabel("Format"))
+        options.addWidget(self.format)
+        buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Close)
+        self.add_button = buttons.addButton("Add", QDialogButtonBox.ButtonRole.ActionRole)
+        self.add_button.clicked.connect(self.add_selected)
+        buttons.rejected.connect(self.reject)
+        layout = QVBoxLayout(self)
+        layout.addLayout(lists)
+        layout.addLayout(options)
+        layout.addWidget(buttons)
+        self.program.currentRowChanged.connect(self._program_row)
+        self.program.itemDoubleClicked.connect(lambda _item: self.add_selected())
+        self.system.itemDoubleClicked.connect(lambda _item, _col: self.add_selected(system=True))
+
+    def _program_row(self, row: int) -> None:
+        array = row - len(self.pane.variables)
+        is_array = 0 <= array < len(self.pane.arrays)
+        self.index.setEnabled(is_array)
+        if is_array:  # DG L2467: only the first 250 elements of an array can be watched
+            self.index.setRange(1, min(self.pane.arrays[array][1], MAX_ARRAY_WATCH))
+        self.system.clearSelection()
+
+    def add_selected(self, system: bool = False) -> None:
+        fmt = self.format.currentText()
+        item = self.system.currentItem()
+        if (system or self.program.currentRow() < 0) and item is not None and item.parent() is not None:
+            self.pane.add(WatchEntry(item.data(0, Qt.ItemDataRole.UserRole), item.text(0), fmt))
+            return
+        row = self.program.currentRow()
+        if row < 0:
+            return
+        if row < len(self.pane.variables):
+            self.pane.add(WatchEntry("variable", self.pane.variables[row], fmt))
+        else:
+            name = self.pane.arrays[row - len(self.pane.variables)][0]
+            self.pane.add(WatchEntry("variable", f"{name}[{self.index.value()}]", fmt))
