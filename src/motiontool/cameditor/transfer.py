@@ -10,22 +10,28 @@ from __future__ import annotations
 
 from motiontool.camcurve.layout import CurveArrayError, decode
 from motiontool.camcurve.model import CurveError
-from motiontool.cameditor.zbc import ArrayEntry, ConfigError, ConfigFile
+from motiontool.cameditor.zbc import ArrayEntry, ConfigError, ConfigFile, parameter_section
 from motiontool.comms.link import Link
 from motiontool.comms.protocol import LinkError
 from motiontool.paramdb import database
 
+#: The sets Restore from file offers as checkboxes (DG 2894-2900): parameter sections of the .zbc, and arrays.
+SETS = ("global", "axis", "user", "arrays")
 
-def download_config(link: Link, config: ConfigFile) -> None:
-    """Write ``config``'s parameters and arrays to the controller; raises ConfigError naming what failed."""
+
+def download_config(link: Link, config: ConfigFile, sets: tuple[str, ...] = SETS) -> None:
+    """Write ``config``'s parameters and arrays (those of ``sets``) to the controller; raises ConfigError
+    naming what failed."""
     db = database()
     for number, value in config.parameters.items():
         parameter = db.get(number)
+        if parameter_section(parameter) not in sets:
+            continue
         try:
             link.write_parameter(parameter.number, parameter.to_raw(value))
         except LinkError as exc:
             raise ConfigError(f"parameter {parameter.label}: the controller refused {value}: {exc}") from None
-    if config.arrays:
+    if config.arrays and "arrays" in sets:
         try:
             link.call("restore_arrays", arrays=[{"name": a.name, "values": list(a.values)} for a in config.arrays])
         except LinkError as exc:

@@ -37,6 +37,7 @@ OPERATIONS: dict[str, tuple[str, ...]] = {
     "upload_recording": ("index",),                  # → {"name", "interval_ms", "indices", "names", "samples"}
     "error_history": (),
     "clear_error": (),
+    "reset": ("what",),                              # "parameters" | "user" | "arrays" | "all" (Controller → Reset)
     "advance": ("ms",),                              # virtual time, simulated controllers only
     "set_breakpoints": ("lines",),                   # debugger: source lines of the main file (debug builds)
     "step": (),                                      # run to the next statement and stop there

@@ -14,6 +14,8 @@ from motiontool.kernel.controller import Controller, Event
 from motiontool.kernel.errors import ControllerError
 from motiontool.kernel.sysvars import read_sysvar, sysvar_name
 
+RESETS = ("parameters", "user", "arrays", "all")  # Controller → Reset (op_reset)
+
 # Signals for streaming and traces: name → reader (user units where the manual reports them so).
 SIGNALS: dict[str, Callable[[Controller], float]] = {
     "APOS": lambda c: c.uu(c.axis.apos),
@@ -211,6 +213,25 @@ class ControllerService:
 
     def op_clear_error(self) -> None:
         self.controller.clear_error()
+
+    def op_reset(self, what) -> None:
+        """Controller → Reset (DG 2948-2980): "parameters" (global and axis to their defaults), "user"
+        (19-xx), "arrays" (like DELETE ARRAYS), "all" (a factory reset: also the stored programs)."""
+        if what not in RESETS:
+            raise ValueError(f"reset {what!r}: choose one of {', '.join(RESETS)}")
+        c = self.controller
+        if c.program_state == "running":
+            raise ValueError("stop the program before a reset")
+        groups = {"parameters": (32, 33), "user": (19,), "arrays": (), "all": (19, 32, 33)}[what]
+        params = c.params
+        for p in params.db:
+            if p.index // 100 in groups and not p.read_only:
+                params.values[p.index] = params.saved[p.index] = p.to_raw(p.default)
+        if what in ("arrays", "all"):
+            c.arrays.delete()
+        if what == "all":
+            self.programs.clear()
+            self.temporary = None
 
     def op_advance(self, ms) -> None:
         for _ in range(int(ms)):

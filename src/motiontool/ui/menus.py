@@ -10,6 +10,7 @@ from PySide6.QtGui import QKeySequence
 from PySide6.QtWidgets import QFileDialog, QMenu
 
 from motiontool.resources import resources_path
+from motiontool.ui import controller_menu as cm
 
 
 def _samples() -> list[str]:
@@ -62,8 +63,13 @@ def build_menus(w) -> None:
             ("Command List...", "F12", lambda: _command_list(w)),
         ]),
         ("&Controller", [
-            ("&Programs...", None, None), ("P&arameters", None, None), ("&Memory", None, None),
-            ("&Reset", None, None), None, ("Error &History...", None, lambda: _error_history(w)),
+            ("&Programs...", None, lambda: cm.show_programs(w)),
+            ("P&arameters", None, [("Save to file...", None, lambda: cm.save_parameters(w)),
+                                   ("Restore from file...", None, lambda: cm.restore_parameters(w))]),
+            ("&Memory", None, None),
+            ("&Reset", None, [(f"{title}...", None, lambda k=key: cm.reset(w, k))
+                              for title, key, _effect in cm.RESET_ENTRIES]),
+            None, ("Error &History...", None, lambda: _error_history(w)),
             ("&Diagnostic Report...", None, None),
         ]),
         ("&Tools", [("&CAM-Editor", None, None), ("&Array Editor", None, None), ("&Oscilloscope", None, None)]),
@@ -104,6 +110,13 @@ def build_menus(w) -> None:
                 continue
             if slot == "messages":
                 _messages_menu(w, menu.addMenu(text))
+                continue
+            if isinstance(slot, list):  # a submenu (Controller → Parameters ▸, Reset ▸)
+                sub = menu.addMenu(text)
+                for sub_text, _keys, sub_slot in slot:
+                    action = sub.addAction(sub_text)
+                    action.triggered.connect(lambda _checked=False, s=sub_slot: s())
+                    w.actions_by_text[sub_text.replace("&", "")] = action
                 continue
             action = menu.addAction(text)
             if shortcut:

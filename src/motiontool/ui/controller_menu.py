@@ -1,0 +1,249 @@
+"""Controller menu (ide-spec 2.15-2.30, DG 2613-2980): Programs, Parameters ▸ Save to file / Restore from file,
+Reset ▸.  Every action goes through a comms Link of the window's controller registry."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from PySide6.QtWidgets import (
+    QAbstractItemView,
+    QCheckBox,
+    QComboBox,
+    QDialog,
+    QDialogButtonBox,
+    QFileDialog,
+    QFormLayout,
+    QHBoxLayout,
+    QInputDialog,
+    QMessageBox,
+    QPushButton,
+    QTableWidget,
+    QTableWidgetItem,
+    QVBoxLayout,
+)
+
+from motiontool.cameditor.transfer import SETS, download_config, upload_config
+from motiontool.cameditor.zbc import ConfigError, read_config, write_config
+from motiontool.comms.protocol import LinkError
+from motiontool.ui.controllers import SIMULATED_IDS
+
+SET_LABELS = {"global": "Global parameters", "axis": "Axis parameters", "user": "User parameters",
+              "arrays": "Arrays"}
+RESET_ENTRIES = (("Parameter", "parameters", "global and axis parameters go back to their defaults"),
+                 ("Arrays", "arrays", "all arrays in the controller are deleted (like DELETE ARRAYS)"),
+                 ("User Parameters", "user", "the user parameters 19-xx go back to their defaults"),
+                 ("Complete", "all", "parameters, arrays and stored programs: an immediate factory reset"))
+PROGRAM_NUMBERS = range(0, 91)  # DG 2627-2639: up to 91 programs, numbers 0-90
+
+
+def _link(w, controller_id: int | None = None):
+    if controller_id is None:
+        return w.bridge.link if w.development.connect_default() else None
+    return w.controllers.link(controller_id)
+
+
+def save_parameters(w, path: Path | None = None) -> bool:
+    """Parameters → Save to file (DG 2884-2892): global, axis and user parameters and all arrays → .zbc."""
+    link = _link(w)
+    if link is None:
+        return False
+    if path is None:
+        chosen, _ = QFileDialog.getSaveFileName(w, "Save to file", "controller.zbc",
+                                                "Configuration (*.zbc *.cnf)")
+        if not chosen:
+            return False
+        path = Path(chosen)
+    try:
+        write_config(path, upload_config(link))
+    except (LinkError, ConfigError, OSError) as exc:
+        w.messages.ide(f"Save to file: {exc}")
+        return False
+    w.messages.ide(f"Controller {w.bridge.controller_id}: configuration saved to {path}")
+    return True
+
+
+class RestoreDialog(QDialog):
+    """Pick the controller and the sets to load; Restore overwrites them (DG 2894-2900)."""
+
+    def __init__(self, parent, path: Path, controller_id: int) -> None:
+        super().__init__(parent)
+        self.setWindowTitle(f"Restore from file — {path.name}")
+        self.controller = QComboBox()
+        for cid in SIMULATED_IDS:
+            self.controller.addItem(f"Controller {cid}: simulated MCO 305", cid)
+        self.controller.setCurrentIndex(max(0, self.controller.findData(controller_id)))
+        self.checks = {name: QCheckBox(SET_LABELS[name]) for name in SETS}
+        form = QFormLayout(self)
+        form.addRow("Load into", self.controller)
+        for check in self.checks.values():
+            check.setChecked(True)
+            form.addRow(check)
+        buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Cancel)
+        self.restore_button = buttons.addButton("Restore", QDialogButtonBox.ButtonRole.AcceptRole)
+        buttons.accepted.connect(self.accept)
+        buttons.rejected.connect(self.reject)
+        form.addRow(buttons)
+
+    def sets(self) -> tuple[str, ...]:
+        return tuple(name for name, check in self.checks.items() if check.isChecked())
+
+    def controller_id(self) -> int:
+        return int(self.controller.currentData())
+
+
+def restore_parameters(w, path: Path | None = None, controller_id: int | None = None,
+                       sets: tuple[str, ...] | None = None) -> bool:
+    """Parameters → Restore from file: an Open dialog, then the target controller and the sets."""
+    if path is None:
+        chosen, _ = QFileDialog.getOpenFileName(w, "Restore from file", "", "Configuration (*.zbc *.cnf)")
+        if not chosen:
+            return False
+        path = Path(chosen)
+    try:
+        config = read_config(path)
+    except ConfigError as exc:  # the file is refused with its line; the controller is untouched
+        w.messages.ide(f"Restore from file: {exc}")
+        return False
+    if controller_id is None or sets is None:
+        dialog = RestoreDialog(w, path, w.bridge.controller_id)
+        if not dialog.exec():
+            return False
+        controller_id, sets = dialog.controller_id(), dialog.sets()
+    try:
+        download_config(w.controllers.link(controller_id), config, sets)
+    except (LinkError, ConfigError, ValueError) as exc:
+        w.messages.ide(f"Restore from file: controller {controller_id}: {exc}")
+        return False
+    w.messages.ide(f"Controller {controller_id}: restored {', '.join(sets) or 'nothing'} from {path}")
+    return True
+
+
+def reset(w, what: str, ask: bool = True) -> bool:
+    """Controller → Reset ▸ (DG 2948-2980): each entry acts immediately after one confirmation."""
+    title, _key, effect = next(e for e in RESET_ENTRIES if e[1] == what)
+    link = _link(w)
+    if link is None:
+        return False
+    if ask and QMessageBox.question(w, f"Reset {title}", f"Reset {title}: {effect}. Continue?") \
+            != QMessageBox.StandardButton.Yes:
+        return False
+    try:
+        link.call("reset", what=what)
+    except LinkError as exc:
+        w.messages.ide(f"Reset {title}: {exc}")
+        return False
+    w.messages.ide(f"Controller {w.bridge.controller_id}: reset {title.lower()} done")
+    return True
+
+
+class ProgramsDialog(QDialog):
+    """Controller → Programs (DG 2627-2794): the programs stored on the controller; Save / Save as compile the
+    current editor into permanent memory, Start runs the selected one, Delete / Delete all remove them."""
+
+    def __init__(self, w) -> None:
+        super().__init__(w)
+        self.w = w
+        self.setWindowTitle(f"Programs — controller {w.bridge.controller_id}")
+        self.table = QTableWidget(0, 2)
+        self.table.setHorizontalHeaderLabels(["No.", "Name"])
+        self.table.horizontalHeader().setStretchLastSection(True)
+        self.table.verticalHeader().hide()
+        self.table.setSelectionBehavior(QAbstractItemView.SelectionBehavior.SelectRows)
+        self.table.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
+        buttons = QHBoxLayout()
+        self.buttons = {}
+        for text, slot in (("Save", self.save), ("Save as...", self.save_as), ("Start", self.start),
+                           ("Delete", self.delete), ("Delete all", self.delete_all), ("Close", self.accept)):
+            button = QPushButton(text)
+            button.clicked.connect(lambda _checked=False, s=slot: s())
+            buttons.addWidget(button)
+            self.buttons[text] = button
+        layout = QVBoxLayout(self)
+        layout.addWidget(self.table)
+        layout.addLayout(buttons)
+        self.resize(460, 320)
+        self.refresh()
+
+    @property
+    def link(self):
+        return self.w.bridge.link
+
+    def programs(self) -> list[dict]:
+        return self.link.call("list_programs") if self.link is not None else []
+
+    def refresh(self) -> None:
+        rows = self.programs()
+        self.table.setRowCount(len(rows))
+        for r, p in enumerate(rows):
+            self.table.setItem(r, 0, QTableWidgetItem(str(p["number"])))
+            self.table.setItem(r, 1, QTableWidgetItem(p["name"]))
+
+    def selected_number(self) -> int | None:
+        row = self.table.currentRow()
+        return int(self.table.item(row, 0).text()) if row >= 0 else None
+
+    def store(self, number: int | None = None, name: str | None = None) -> bool:
+        """Compile the current program into permanent memory: the next free number unless one is given."""
+        outcome = self.w.development.compile_current()
+        if outcome is None or not outcome.result.ok:
+            self.w.messages.ide("Programs: the program has errors and was not saved")
+            return False
+        used = {p["number"] for p in self.programs()}
+        if number is None:
+            number = next((n for n in PROGRAM_NUMBERS if n not in used), None)
+            if number is None:
+                self.w.messages.ide("Programs: all 91 program numbers are used")
+                return False
+        image = outcome.result.image
+        try:
+            self.link.download(image.to_bytes(), number=number, name=(name or image.name)[:8])
+        except LinkError as exc:
+            self.w.messages.ide(f"Programs: {exc}")
+            return False
+        self.refresh()
+        return True
+
+    def save(self) -> bool:
+        name, ok = QInputDialog.getText(self, "Save", "Program name (8 characters):",
+                                        text=self._default_name())
+        return ok and self.store(name=name)
+
+    def save_as(self) -> bool:
+        name, ok = QInputDialog.getText(self, "Save as", "Program name (8 characters):",
+                                        text=self._default_name())
+        if not ok:
+            return False
+        number, ok = QInputDialog.getInt(self, "Save as", "Program number (0-90):", 0, 0, 90)
+        return ok and self.store(number, name)
+
+    def _default_name(self) -> str:
+        editor = self.w.current_editor()
+        path = editor.property("path") if editor is not None else None
+        return (Path(path).stem if path else "PROGRAM")[:8]
+
+    def start(self) -> bool:
+        number = self.selected_number()
+        if number is None:
+            return False
+        try:
+            self.link.start(number)
+        except LinkError as exc:
+            self.w.messages.ide(f"Programs: {exc}")
+            return False
+        return True
+
+    def delete(self) -> None:
+        number = self.selected_number()
+        if number is not None:
+            self.link.call("delete_program", number=number)
+            self.refresh()
+
+    def delete_all(self) -> None:
+        for p in self.programs():
+            self.link.call("delete_program", number=p["number"])
+        self.refresh()
+
+
+def show_programs(w) -> None:
+    if w.development.connect_default():
+        ProgramsDialog(w).exec()
