@@ -81,3 +81,15 @@ def test_programs_save_start_delete(window, qtbot):
     assert [p["number"] for p in dialog.programs()] == [7]
     dialog.delete_all()
     assert dialog.table.rowCount() == 0
+
+
+def test_diagnostic_report_holds_the_whole_state(window, tmp_path):
+    """DG 3029-3031: "a text file containing the entire current state of the controller"."""
+    assert window.development.connect_default()
+    window.bridge.link.write_parameter("KPROP", 61)
+    path = tmp_path / "report.txt"
+    assert cm.diagnostic_report(window, path)
+    text = path.read_text()
+    for part in ("[status]", "[error history]", "[programs]", "[readouts]", "34-50 = 0",
+                 "32-60 KPROP = 61", "# motiontool configuration file, format 1"):
+        assert part in text, part

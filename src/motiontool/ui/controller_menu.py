@@ -247,3 +247,52 @@ class ProgramsDialog(QDialog):
 def show_programs(w) -> None:
     if w.development.connect_default():
         ProgramsDialog(w).exec()
+
+
+def diagnostic_report_text(link, controller_id: int) -> str:
+    """Controller → Diagnostic Report (DG 3029-3031): the controller's entire current state as text for
+    support: identity, status, error history, programs, every parameter and every array."""
+    from motiontool.cameditor.zbc import config_text
+    from motiontool.paramdb import database
+
+    ident = link.call("identify")
+    status = link.status()
+    lines = [f"# motiontool diagnostic report, controller {controller_id}",
+             f"product: {ident['product']}", f"firmware: {ident['firmware']}", f"protocol: {ident['protocol']}",
+             "", "[status]"]
+    lines += [f"{key} = {value}" for key, value in status.to_dict().items()]
+    lines += ["", "[error history]"]
+    history = link.call("error_history")
+    lines += [f"{e['time_ms']} ms  error {e['number']}: {e['text']}" + (f" (line {e['line']})" if e["line"] else "")
+              for e in history] or ["none"]
+    lines += ["", "[programs]"]
+    lines += [f"{p['number']}: {p['name']}" for p in link.call("list_programs")] or ["none"]
+    lines += ["", "[readouts]"]
+    for p in database():
+        if p.read_only:
+            try:
+                lines.append(f"{p.label} = {link.read_parameter(p.number)}")
+            except LinkError as exc:
+                lines.append(f"{p.label} = ? ({exc})")
+    lines += ["", "[configuration]", config_text(upload_config(link))]
+    return "\n".join(lines) + "\n"
+
+
+def diagnostic_report(w, path: Path | None = None) -> bool:
+    link = _link(w)
+    if link is None:
+        return False
+    if path is None:
+        chosen, _ = QFileDialog.getSaveFileName(w, "Diagnostic Report", "diagnostic-report.txt", "Text (*.txt)")
+        if not chosen:
+            return False
+        path = Path(chosen)
+    from motiontool.fileio import atomic_write_text
+
+    try:
+        atomic_write_text(path, diagnostic_report_text(link, w.bridge.controller_id))
+    except (LinkError, ConfigError, OSError) as exc:
+        w.messages.ide(f"Diagnostic Report: {exc}")
+        return False
+    w.messages.ide(f"Controller {w.bridge.controller_id}: diagnostic report written to {path}")
+    return True

@@ -70,7 +70,7 @@ def build_menus(w) -> None:
             ("&Reset", None, [(f"{title}...", None, lambda k=key: cm.reset(w, k))
                               for title, key, _effect in cm.RESET_ENTRIES]),
             None, ("Error &History...", None, lambda: _error_history(w)),
-            ("&Diagnostic Report...", None, None),
+            ("&Diagnostic Report...", None, lambda: cm.diagnostic_report(w)),
         ]),
         ("&Tools", [("&CAM-Editor", None, None), ("&Array Editor", None, None), ("&Oscilloscope", None, None)]),
         ("&Settings", [
