@@ -72,7 +72,8 @@ def build_menus(w) -> None:
             None, ("Error &History...", None, lambda: _error_history(w)),
             ("&Diagnostic Report...", None, lambda: cm.diagnostic_report(w)),
         ]),
-        ("&Tools", [("&CAM-Editor", None, None), ("&Array Editor", None, None), ("&Oscilloscope", None, None)]),
+        ("&Tools", [("&CAM-Editor", None, None), ("&Array Editor", None, lambda: _array_editor(w)),
+                    ("&Oscilloscope", None, None)]),
         ("&Settings", [
             ("&Editor...", None, lambda: _editor_settings(w)), ("&Compiler...", None, None),
             ("Open last file", None, "open_last"),
@@ -175,6 +176,12 @@ def _command_list(w) -> None:
     dialog.execute_requested.connect(w.development.execute_line)
     w.command_list = dialog
     dialog.show()
+
+
+def _array_editor(w) -> None:
+    from motiontool.arrayeditor.ui.editor import open_array_editor
+
+    open_array_editor(w)
 
 
 def _select_controller(w) -> None:

@@ -1,0 +1,1 @@
+"""Qt view of the Array Editor."""
