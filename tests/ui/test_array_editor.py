@@ -1,6 +1,6 @@
 """Tools → Array Editor against the embedded controller (ide-spec 5.5-5.30, DG L4074-4590)."""
 
-from PySide6.QtCore import Qt
+from PySide6.QtCore import QItemSelectionModel, Qt
 
 from motiontool.arrayeditor.ui.editor import COLUMNS, GREEN, RED_BG, VALUE
 from motiontool.arrayeditor.zba import read_zba
@@ -65,7 +65,10 @@ def test_set_to_default_and_to_controller(window):
     editor = _open(window)
     editor.selection_box.setCurrentText("Axis 1")
     r, row = _row(editor, "Axis 1 3260 KPROP")
-    editor.table.selectRow(r)
+    # select through the selection model: QTableView.selectRow obeys the application's keyboard modifiers,
+    # which key clicks with Ctrl/Shift in earlier tests leave set under the offscreen platform
+    flags = QItemSelectionModel.SelectionFlag.ClearAndSelect | QItemSelectionModel.SelectionFlag.Rows
+    editor.table.selectionModel().select(editor.model.index(r, 0), flags)
     editor.set_to_controller()
     assert row.pending == 30
     row.pending = 99
