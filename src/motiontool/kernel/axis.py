@@ -19,6 +19,7 @@ from motiontool.kernel.profile import Limits, ProfileGenerator
 from motiontool.kernel.units import Scaling
 
 IDLE, POSITIONING, SPEED, STOPPING, HOMING, SYNC = "idle", "positioning", "speed", "stopping", "homing", "sync"
+CAM = "cam"  # SYNCC: axis.sync is a cam.CamMotion
 
 
 @dataclass
@@ -85,6 +86,10 @@ class Axis:
         if self.control_on:
             if self.mode == SYNC:
                 self.sync.step(pg)
+            elif self.mode == CAM:
+                self.sync.step(pg)
+                if self.sync.finish is not None:  # disengaged: position to the slave stop position
+                    self.move_to(*self.sync.finish)
             elif pg.mode != "idle":
                 pg.step()
             if self.homing is not None:
@@ -163,7 +168,7 @@ class Axis:
         self.mode = SPEED
         self.last_motion = ("speed", velocity, limits)
 
-    def synchronise(self, motion) -> None:
+    def synchronise(self, motion, mode: str = SYNC) -> None:
         """SYNCV / SYNCP: from now on the sync motion drives the commanded position (RAMPTYPE does not
         apply, DG 8987)."""
         self._start()
@@ -172,11 +177,11 @@ class Axis:
         self.profile.velocity = vel
         self.profile.mode = "sync"
         self.sync = motion
-        self.mode = SYNC
+        self.mode = mode
         self.homing = None
 
     def _leave_sync(self) -> None:
-        if self.mode == SYNC:
+        if self.mode in (SYNC, CAM):
             self.profile.acceleration = 0.0
             self.profile.mode = "idle"
         self.sync = None
@@ -225,7 +230,7 @@ class Axis:
         """Make axis position `by_qc` the new 0 (DEFORIGIN/DEFCORIGIN/HOME); the tracking error is kept."""
         self.origin += by_qc
         self.apos -= by_qc
-        if self.mode == SYNC:  # the sync relation moves with the origin
+        if self.mode in (SYNC, CAM):  # the sync relation moves with the origin
             self.profile.position -= by_qc
             self.sync.shift(-by_qc)
         elif self.profile.done:

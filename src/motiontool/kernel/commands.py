@@ -9,7 +9,6 @@ from __future__ import annotations
 from motiontool.kernel import io as iomod
 from motiontool.kernel.errors import ControllerError
 from motiontool.kernel.homing import Homing
-from motiontool.kernel.sync import Gear, SyncMotion
 from motiontool.kernel.sysvars import read_sysvar
 from motiontool.kernel.vm import Wait
 
@@ -188,6 +187,10 @@ def continue_(ctl, vm, args):
 
 @command("WAITAX")
 def waitax(ctl, vm, args):
+    # A synchronisation has no target position (AXEND bit 1 clear, kernel-spec p.4): WAITAX returns at once
+    # instead of blocking the program for as long as the axis follows the master.
+    if ctl.axis.mode == "sync":
+        return None
     return Until(ctl.axis.position_reached)
 
 
@@ -247,75 +250,6 @@ def rstorigin(ctl, vm, args):
     ctl.temp_origin = 0
 
 
-# --- synchronisation (kernel-spec f; docs in kernel/sync.py and kernel/master.py) ----------------------------
-def _gear(ctl, start: int = 0) -> Gear:
-    return Gear(ctl.params["SYNCFACTS"], ctl.params["SYNCFACTM"], start)
-
-
-@command("SYNCV")
-def syncv(ctl, vm, args):
-    _motion_allowed(ctl)
-    ctl.axis.synchronise(SyncMotion("velocity", ctl.master, _gear(ctl), _limits(ctl)))
-
-
-@command("SYNCP")
-def syncp(ctl, vm, args):
-    """CR 891-975, DG 944-1140: CPOS follows MAPOS × gear + offset (master qc); DEFSYNCORIGIN m s makes
-    slave s belong to master m for this SYNCP."""
-    _motion_allowed(ctl)
-    data = ctl.program_data
-    base_master, base_slave = 0, 0
-    if data.sync_origin is not None:
-        base_master, base_slave = data.sync_origin
-        data.sync_origin = None
-        data.sync_shift = 0  # DEFSYNCORIGIN overrides an earlier MOVESYNCORIGIN (CR 903-906)
-    values = ctl.params.values
-    offs_index = ctl.params.parameter("SYNCPOSOFFS").index
-
-    def offset() -> int:
-        return values[offs_index] + data.sync_shift
-
-    gear = _gear(ctl, ctl.master.mapos - base_master + offset())
-    motion = SyncMotion("position", ctl.master, gear, _limits(ctl), offset, base_slave,
-                        ctl.params["SYNCACCURACY"])
-    ctl.axis.synchronise(motion)
-
-
-@command("MOVESYNCORIGIN")
-def movesyncorigin(ctl, vm, args):
-    ctl.program_data.sync_shift += args[0]  # relative, master qc (CR 2397-2415)
-
-
-@command("DEFSYNCORIGIN")
-def defsyncorigin(ctl, vm, args):
-    ctl.program_data.sync_origin = (args[0], args[1])  # master qc, slave qc (CR 891-906)
-
-
-@command("SYNCSTATCLR")
-def syncstatclr(ctl, vm, args):
-    ctl.program_data.syncstat_flags &= ~args[0]
-
-
-@command("PULSVEL")
-def pulsvel(ctl, vm, args):
-    ctl.master.pulsvel(args[0])
-
-
-@command("PULSACC")
-def pulsacc(ctl, vm, args):
-    ctl.master.pulsacc(args[0])
-
-
-@command("DEFMORIGIN")
-def defmorigin(ctl, vm, args):
-    ctl.master.defmorigin()
-
-
-@command("SETMORIGIN")
-def setmorigin(ctl, vm, args):
-    ctl.master.setmorigin(args[0])
-
-
 # --- waiting and time ----------------------------------------------------------------------------------
 @command("DELAY")
 def delay(ctl, vm, args):
@@ -367,7 +301,8 @@ COMMANDS.update({
     "AXEND": lambda c, vm, a: c.axis.axend(),
     "STAT": lambda c, vm, a: c.stat(),
     "ERRNO": lambda c, vm, a: c.error,
-    "IPOS": lambda c, vm, a: c.uu(getattr(c, "ipos_qc", 0)),
+    "IPOS": lambda c, vm, a: c.uu(c.markers.ipos_qc()),
+    "MIPOS": lambda c, vm, a: c.markers.mipos(),
     "APOSDIFF": lambda c, vm, a: _posdiff(c.uu(c.axis.apos), a[0]),
     "CPOSDIFF": lambda c, vm, a: _posdiff(c.uu(c.axis.cpos), a[0]),
     "SYNCSTAT": lambda c, vm, a: c.syncstat(),
@@ -558,3 +493,7 @@ def printdev(ctl, vm, args):
 @command("SYSVAR")
 def sysvar(ctl, vm, args):
     return read_sysvar(ctl, args[0]) or 0
+
+
+# the synchronisation, marker and CAM commands live in their own module; importing it registers them
+from motiontool.kernel import sync_commands  # noqa: E402, F401

@@ -14,8 +14,10 @@ from motiontool.aposs.image import CommandCall, ProgramImage
 from motiontool.kernel import io as iomod
 from motiontool.kernel.arrays import ArrayMemory
 from motiontool.kernel.axis import Axis, Gains
+from motiontool.kernel.cam import curve_cycle_length, master_curve_position
 from motiontool.kernel.errors import AXIS_ERRORS, ControllerError, error_text
 from motiontool.kernel.interrupts import Interrupts
+from motiontool.kernel.markers import Markers
 from motiontool.kernel.master import Master, MasterConfig
 from motiontool.kernel.parameters import ParameterStore
 from motiontool.kernel.plant import PlantConfig
@@ -61,6 +63,9 @@ class ProgramData:
     sync_shift: int = 0                       # Σ MOVESYNCORIGIN (master qc)
     sync_origin: tuple[int, int] | None = None  # DEFSYNCORIGIN (master, slave) for the next SYNCP
     syncstat_flags: int = 0                   # latched SYNCSTAT bits (marker hits/errors), SYNCSTATCLR
+    cam: object | None = None                 # cam.CamState of the last SETCURVE
+    mc_ref: tuple = (0, 0)                    # DEFMCPOS: curve master position p (MU) at MAPOS a (qc)
+    mc_defined: bool = False                  # a DEFMCPOS was given (ON MCPOS without SETCURVE)
 
 
 @dataclass
@@ -101,6 +106,7 @@ class Controller:
         self.apply_parameters()
         self.params.on_change = self._parameter_changed
         self._install_readouts()
+        self.markers = Markers(self)  # master/slave markers, MIPOS/IPOS, SYNCM (kernel/markers.py)
         from motiontool.kernel import commands
         self._commands = commands.COMMANDS
 
@@ -281,6 +287,7 @@ class Controller:
                 self._machine_inputs()
             self.master.tick(self.time_ms)
             self.axis.tick()
+            self.markers.tick()
             if self.axis.homing is not None and self.axis.homing.done:
                 self._homing_finished()
             if self.soft_limits != (None, None) and self.axis.mode not in ("idle", "positioning"):
@@ -390,6 +397,14 @@ class Controller:
         if sources:
             kinds = {s.kind for s in sources}
             positions = {"APOS": self.uu(self.axis.apos)} if "APOS" in kinds else {}
+            if "IPOS" in kinds or "MIPOS" in kinds:  # distance since the last marker (DG 7158)
+                positions["IPOS"] = self.uu(self.axis.apos) - self.uu(self.markers.ipos_qc())
+                positions["MIPOS"] = self.master.mapos - self.markers.mipos()
+            if "MCPOS" in kinds:  # CAM box: curve master position in MU (DG 1748-1772)
+                mcpos = master_curve_position(self)
+                if mcpos is not None:
+                    positions["MCPOS"] = mcpos
+                    positions["MCPOS_CYCLE"] = curve_cycle_length(self)
             statbits = self.statbits() if "STATBIT" in kinds else 0
             inputs = self.io.inputs
             actions = self.interrupts.detect(self.time_ms, lambda n: inputs.get(n, 0), positions, statbits, None)
@@ -413,7 +428,8 @@ class Controller:
 
     def statbits(self) -> int:
         st = self.stat()
-        return ((st >> 24) & 0xFF) << 16
+        # CR 3021-3040: byte 3 = MOVING …, byte 4 = SYNCSTAT (bit 25 SYNCREADY … bit 31 SYNCSMERR)
+        return (((st >> 24) & 0xFF) << 16) | ((self.syncstat() & 0x7F) << 24)
 
     # --- errors --------------------------------------------------------------------------------------------
     def raise_error(self, exc: ControllerError) -> None:

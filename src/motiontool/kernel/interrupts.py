@@ -117,7 +117,13 @@ class Interrupts:
                 value = positions.get(kind)
                 if value is not None and s.last is not None:
                     p = s.number
-                    fired = (s.last < p <= value) if s.sign > 0 else (s.last > p >= value)
+                    cycle = positions.get("MCPOS_CYCLE") if kind == "MCPOS" else None
+                    if cycle and abs(value - s.last) > cycle / 2:  # the curve restarted (… L → 0 …): unwrap
+                        v = value + cycle if value < s.last else value - cycle
+                        fired = any((s.last < q <= v) if s.sign > 0 else (s.last > q >= v)
+                                    for q in (p - cycle, p, p + cycle))
+                    else:
+                        fired = (s.last < p <= value) if s.sign > 0 else (s.last > p >= value)
                 s.last = value
                 if fired and s.sub < 0:  # SETOUT in the background, < 1 ms (CR 2985-3016)
                     out = s.setout

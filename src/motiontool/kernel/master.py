@@ -18,6 +18,7 @@ Everything is computed from the tick count; nothing reads the wall clock.
 from __future__ import annotations
 
 import math
+import random
 from collections import deque
 from dataclasses import dataclass, fields
 
@@ -40,6 +41,15 @@ class MasterConfig:
     acceleration: float = 0.0
     table: tuple = ()
     start_position_qc: float = 0.0
+    jitter: float = 0.0             # ± qc/ms of random speed noise per tick (deterministic from `seed`)
+    seed: int = 0
+    # a marker sensor on the master side, wired to input 5 (kernel/markers.py MarkerSensor): products every
+    # marker_period_qc (or at marker_positions_qc), marker_width_qc long, each displaced by ±marker_jitter_qc
+    marker_period_qc: float = 0.0
+    marker_offset_qc: float = 0.0
+    marker_width_qc: float = 100.0
+    marker_positions_qc: tuple = ()
+    marker_jitter_qc: float = 0.0
 
     @classmethod
     def from_mapping(cls, values: dict) -> MasterConfig:
@@ -50,6 +60,8 @@ class MasterConfig:
         values = dict(values)
         if "table" in values:
             values["table"] = tuple((float(t), float(v)) for t, v in values["table"])
+        if "marker_positions_qc" in values:
+            values["marker_positions_qc"] = tuple(float(p) for p in values["marker_positions_qc"])
         return cls(**values)
 
     def speed_at(self, t_ms: float) -> float:
@@ -82,6 +94,7 @@ class Master:
         self.virtual_acc = 0.0     # qc/ms², 0 = change at once
         self.pending_acc: float | None = None  # PULSACC waits for the next PULSVEL
         self._history: deque[int] = deque([self.raw], maxlen=MAVEL_WINDOW_MS + 1)
+        self._noise = random.Random(self.config.seed) if self.config.jitter else None
 
     # --- readouts -------------------------------------------------------------------------------------------
     @property
@@ -108,6 +121,8 @@ class Master:
             self.virtual_speed = v
         else:
             v = self.config.speed_at(time_ms)
+            if self._noise is not None:
+                v += self._noise.uniform(-self.config.jitter, self.config.jitter)
         self.velocity = v
         self.position += v
         self.raw = math.floor(self.position)

@@ -22,6 +22,11 @@ class PlantConfig:
     pos_limit_switch_qc: int | None = None
     index_period_qc: int | None = None      # index pulse every n qc; None = one per revolution (4 * 32-01)
     start_position_qc: float = 0.0
+    # a marker sensor on the slave side, wired to input 6 (kernel/markers.py MarkerSensor), raw encoder qc
+    slave_marker_period_qc: float = 0.0
+    slave_marker_offset_qc: float = 0.0
+    slave_marker_width_qc: float = 100.0
+    slave_marker_positions_qc: tuple = ()
 
     @classmethod
     def from_mapping(cls, values: dict) -> PlantConfig:

@@ -12,6 +12,11 @@ DEFSYNCORIGIN pair, else 0, i.e. slave axis position 0 belongs to MAPOS 0). Whil
 T (start, offset change, a master faster than the slave can follow) it catches up within VEL and ACC/DEC:
 relative to the master it runs on a braking curve for min(ACC, DEC); when the remaining gap and the
 relative velocity are below one step it locks, and from then on CPOS = T exactly each ms.
+
+Refinements (DG 9462-9492, 9763-9843, 8790-8805): SYNCVELREL bounds the slave speed while it corrects;
+the SYNCV command velocity passes the 33-26 velocity filter; offset changes and marker corrections are
+realised by `OffsetFilter` (SYNCOFFTIME, 20/60/20 trapezoid) or at once; REVERS blocks reversing;
+SYNCFFVEL leads the SYNCP/SYNCM command by VCMD · SYNCFFVEL/1000 (a velocity-proportional feed-forward).
 """
 
 from __future__ import annotations
@@ -48,38 +53,149 @@ class Gear:
         return self.out
 
 
+# 33-26 standard table: master encoder resolution (lines/rev) → τ_filt in µs (DG 9763-9785).
+VFILTER_TABLE = ((250, 39500), (256, 38600), (500, 19500), (512, 19000), (1000, 9500), (1024, 9300),
+                 (2000, 4500), (2048, 4400), (2500, 3500), (4096, 1900), (5000, 1400))
+
+
+def velocity_filter_ms(syncvftime: int, master_lines: int) -> float:
+    """τ_filt of the SYNCV velocity filter in ms: |SYNCVFTIME| µs, or for −999…999 the standard table by
+    32-31 MENCODER. Between table rows τ·resolution is about constant, so the nearest row is scaled."""
+    if abs(syncvftime) > 999:
+        return abs(syncvftime) / 1000.0
+    lines = max(1, master_lines)
+    res, tau = min(VFILTER_TABLE, key=lambda row: abs(math.log(row[0] / lines)))
+    return tau * res / lines / 1000.0
+
+
+def _trapezoid(x: float) -> float:
+    """Part of an offset realised after the fraction x of its time: 20 % accelerate, 60 % constant,
+    20 % decelerate (DG 9833-9843); peak speed 1/0.8 of the mean."""
+    if x >= 1.0:
+        return 1.0
+    if x < 0.2:
+        return 3.125 * x * x
+    if x < 0.8:
+        return 1.25 * (x - 0.1)
+    return 1.0 - 3.125 * (1.0 - x) ** 2
+
+
+def _trapezoid_rate(x: float) -> float:
+    if x >= 1.0:
+        return 0.0
+    return 6.25 * x if x < 0.2 else (1.25 if x < 0.8 else 6.25 * (1.0 - x))
+
+
+class OffsetFilter:
+    """Offset changes realised over time (33-27 SYNCOFFTIME, DG 9813-9843): each change runs as its own
+    20/60/20 trapezoid superimposed on the synchronised motion; a duration below 1 ms applies at once.
+    Increments are whole qc (the rounded running sum), so the total arrives exactly."""
+
+    def __init__(self) -> None:
+        self.moves: list[list] = []   # [total, duration, elapsed, done]
+        self._now = 0
+        self.velocity = 0.0           # qc/ms the filter adds in this tick
+        self.jumped = False           # an immediate change happened in the last step
+
+    def add(self, amount: int, duration_ms: float) -> None:
+        if not amount:
+            return
+        if duration_ms < 1.0:
+            self._now += amount
+        else:
+            self.moves.append([amount, float(duration_ms), 0, 0])
+
+    @property
+    def pending(self) -> int:
+        return self._now + sum(total - done for total, _, _, done in self.moves)
+
+    def step(self) -> int:
+        inc, self._now = self._now, 0
+        self.jumped = inc != 0
+        velocity = 0.0
+        keep = []
+        for move in self.moves:
+            move[2] += 1
+            total, duration, elapsed, done = move
+            x = elapsed / duration
+            new = round(total * _trapezoid(x))
+            inc += new - done
+            move[3] = new
+            if x < 1.0:
+                keep.append(move)
+                velocity += total * _trapezoid_rate(x) / duration
+        self.moves = keep
+        self.velocity = velocity
+        return inc
+
+
 class SyncMotion:
-    """One running SYNCV ("velocity") or SYNCP ("position"); stepped by the axis once per tick."""
+    """One running SYNCV ("velocity"), SYNCP or SYNCM ("position"); stepped by the axis once per tick.
+
+    velrel: SYNCVELREL %; vfilter_ms: τ of the SYNCV velocity filter (0 = none); offtime: SYNCOFFTIME ms per
+    `marker_distance` (SYNCMPULSM) master qc of offset; revers: 32-68 REVERS. `markers` is the SYNCM
+    marker correction (markers.MarkerSync) that adds slave corrections through `correct`.
+    """
 
     def __init__(self, kind: str, master, gear: Gear, limits, offset=lambda: 0, base_slave: int = 0,
-                 accuracy: int = 1000):
+                 accuracy: int = 1000, *, velrel: int = 0, vfilter_ms: float = 0.0, offtime: int = 0,
+                 marker_distance: int = 4096, revers: int = 0, ffvel: int = 0, spread_ms: float = 0.0):
         self.kind = kind
         self.master = master
         self.gear = gear
         self.vel, self.acc, self.dec = limits.vel, limits.acc, limits.dec
         self.offset = offset          # SYNCPOSOFFS + MOVESYNCORIGIN (master qc), read every tick
         self._offset = offset()
+        self.offset_applied = self._offset  # master qc of offset already in the target
         self._raw = master.raw
         self.base_slave = base_slave
         self.accuracy = accuracy      # SYNCACCURACY as of the SYNC command (DG 9458)
+        self.velrel = max(0, min(100, velrel)) / 100.0
+        self.vfilter_ms = vfilter_ms
+        self.offtime = max(0, offtime)
+        self.marker_distance = max(1, abs(marker_distance))
+        self.revers = revers
+        self.ffvel = ffvel / 1000.0   # 33-32 SYNCFFVEL: position lead of VCMD·SYNCFFVEL/1000 (DG 10062-10075)
+        self._lead = 0.0
+        self.spread_ms = spread_ms    # negative SYNCVFTIME: marker corrections take 10 τ (DG 9807-9811)
+        self.offset_filter = OffsetFilter()  # master qc
+        self.slave_filter = OffsetFilter()   # slave qc (marker corrections)
+        self.slave_shift = 0
+        self.vcmd = master.velocity * gear.ratio  # filtered SYNCV command velocity
+        self.markers = None
         self.locked = False
         self.target = base_slave + gear.out
 
     def step(self, pg) -> None:
         m = self.master
-        vt = m.velocity * self.gear.ratio
+        ratio = self.gear.ratio
         v0 = pg.velocity
         if self.kind == "velocity":
-            v = self._ramp(v0, max(-self.vel, min(self.vel, vt)))
+            raw_v = m.velocity * ratio
+            if self.vfilter_ms > 1.0:  # DG 9786-9800: Cmdvel += (Actvel − Old_Cmdvel) · 1 ms / τ
+                self.vcmd += (raw_v - self.vcmd) / self.vfilter_ms
+            else:
+                self.vcmd = raw_v
+            v = self._ramp(v0, self._reverse_limit(max(-self.vel, min(self.vel, self.vcmd))))
             pg.position += v
         else:
+            pg.position -= self._lead  # the lead is added to the output only; the sync runs without it
             offset = self.offset()
-            d_input = (m.raw - self._raw) + (offset - self._offset)
-            if offset != self._offset:
-                self.locked = False  # an offset change is realised within the limits, not as a jump
-            self._raw, self._offset = m.raw, offset
-            t = self.target = self.base_slave + self.gear.advance(d_input)
-            if self.locked and (abs(vt) > self.vel * (1 + 1e-9) or abs(vt - v0) > self._acc_limit(v0, vt) + 1e-9):
+            if offset != self._offset:  # realised within the limits / by the offset filter, not as a jump
+                delta = offset - self._offset
+                self.offset_filter.add(delta, self._duration(abs(delta), abs(delta * ratio)))
+                self._offset = offset
+            applied = self.offset_filter.step()
+            self.offset_applied += applied
+            d_input = (m.raw - self._raw) + applied
+            self._raw = m.raw
+            self.slave_shift += self.slave_filter.step()
+            if self.offset_filter.jumped or self.slave_filter.jumped:
+                self.locked = False
+            t = self.target = self.base_slave + self.gear.advance(d_input) + self.slave_shift
+            vt = (m.velocity + self.offset_filter.velocity) * ratio + self.slave_filter.velocity
+            if self.locked and (abs(vt) > self.vel * (1 + 1e-9) or abs(vt - v0) > self._acc_limit(v0, vt) + 1e-9
+                                or self._reverse_limit(vt) != vt):
                 self.locked = False  # the master is faster or accelerates harder than the slave may follow
             if self.locked:
                 v = vt
@@ -89,20 +205,56 @@ class SyncMotion:
                 d = gap - vt                    # the offset left if the slave moved like the master
                 brake = min(self.acc, self.dec)
                 w = math.copysign(min(abs(d), brake * (math.sqrt(0.25 + 2.0 * abs(d) / brake) - 0.5)), d)
-                v = self._ramp(v0, max(-self.vel, min(self.vel, vt + w)))
-                if abs(gap - v) <= 1.0 and abs(vt - v0) <= self._acc_limit(v0, vt) + 1e-9 and abs(vt) <= self.vel:
+                v = self._ramp(v0, self._bound(vt + w, m.velocity * ratio))
+                if abs(gap - v) <= 1.0 and abs(vt - v0) <= self._acc_limit(v0, vt) + 1e-9 and abs(vt) <= self.vel \
+                        and self._reverse_limit(vt) == vt:
                     self.locked = True
                     v = vt
                     pg.position = float(t)
                 else:
                     pg.position += v
+            if self.ffvel:
+                self._lead = self.ffvel * v
+                pg.position += self._lead
         pg.acceleration = v - v0
         pg.velocity = v
+
+    def correct(self, slave_qc: int) -> None:
+        """A marker correction of the slave (qc): realised like an offset (SYNCOFFTIME) or at once."""
+        ratio = abs(self.gear.ratio) or 1.0
+        duration = self._duration(abs(slave_qc) / ratio, abs(slave_qc))
+        self.slave_filter.add(slave_qc, max(duration, self.spread_ms) if slave_qc else 0.0)
+
+    def _duration(self, master_qc: float, slave_qc: float) -> float:
+        """SYNCOFFTIME per SYNCMPULSM master qc (DG 9829-9833); 0 = at once. The trapezoid's acceleration
+        Δ/(0.16 T²) must not exceed the slave's ACC/DEC (DG 9841: the ramps are planned to fit), so a
+        too short time is stretched."""
+        if not self.offtime:
+            return 0.0
+        nominal = self.offtime * master_qc / self.marker_distance
+        return max(nominal, math.sqrt(slave_qc / (0.16 * min(self.acc, self.dec))))
+
+    def _bound(self, v: float, v_master: float) -> float:
+        """VEL, SYNCVELREL (DG 9462-9492: between MAVEL·(1 − r) and min(VEL, MAVEL·(1 + r))) and REVERS."""
+        v = max(-self.vel, min(self.vel, v))
+        if self.velrel:
+            vm = abs(v_master)
+            low, high = vm * (1 - self.velrel), min(self.vel, vm * (1 + self.velrel))
+            v = max(low, min(high, v)) if v_master >= 0 else min(-low, max(-high, v))
+        return self._reverse_limit(v)
+
+    def _reverse_limit(self, v: float) -> float:
+        """32-68 REVERS (DG 8790-8805): 1 = backwards only while the master runs backwards, 2 = never."""
+        if v < 0 and (self.revers == 2 or (self.revers == 1 and self.master.velocity >= 0)):
+            return 0.0
+        return v
 
     def shift(self, delta: int) -> None:
         """The slave's origin moved (DEFORIGIN during a synchronisation)."""
         self.base_slave += delta
         self.target += delta
+        if self.markers is not None:
+            self.markers.shift(delta)
 
     def _acc_limit(self, v0: float, v1: float) -> float:
         return self.acc if abs(v1) > abs(v0) and v1 * v0 >= 0 else self.dec
@@ -111,12 +263,18 @@ class SyncMotion:
         lim = self._acc_limit(v0, v1)
         return v0 + max(-lim, min(lim, v1 - v0))
 
+    def pending_qc(self) -> float:
+        """Offsets and corrections not yet realised (slave qc); SYNCERR includes them (DG 10058-10060)."""
+        return self.offset_filter.pending * self.gear.ratio + self.slave_filter.pending
+
     def error_qc(self, apos: int) -> int:
-        """Target minus actual slave position (qc); 0 in SYNCV (no position target)."""
-        return self.target - apos if self.kind == "position" else 0
+        """Target minus actual slave position plus pending corrections (qc); 0 in SYNCV."""
+        return round(self.target + self.pending_qc() - apos) if self.kind == "position" else 0
 
     def status(self, apos: int) -> int:
         bits = 0
-        if self.kind == "position" and abs(self.target - apos) <= abs(self.accuracy):
+        if self.kind == "position" and abs(self.error_qc(apos)) <= abs(self.accuracy):
             bits |= SYNCSTAT_ACCURACY
+        if self.markers is not None:
+            bits |= self.markers.status_bits()
         return bits

@@ -18,14 +18,30 @@ AXIS_PROCESS_DATA = {
     9: ("MASTER_POS", "qc", lambda c: c.master.raw),  # 4105: simulated master position (DG 8370)
     10: ("VELMAXQC", "qc/s", lambda c: round(c.axis.scaling.vmax * 1000)),
     23: ("sys_clock", "ms", lambda c: c.time_ms),
-    28: ("REG_NORMTRACKERR", "qc", lambda c: round(abs(c.axis.tracking_error))),
+    # DG 10075-10079: the tracking error relative to the command velocity in % (120 = 1.2 × VCMD)
+    28: ("REG_NORMTRACKERR", "%", lambda c: _normtrackerr(c)),
+    134: ("CMASTERCPOS", "MU", lambda c: _cmastercpos(c)),  # 4230: curve master position (CR 3936)
 }
 SDO_PROCESS_DATA = {
     0x01250001: "REG_ACTPOS",   # SDO 0x2500 sub 1 (CR 2040)
     0x01250002: "REG_COMPOS",
     0x01250006: "REG_TRACKERR",
 }
+
+
+def _cmastercpos(controller) -> int:
+    from motiontool.kernel.cam import master_curve_position  # cam needs the controller's modules first
+
+    value = master_curve_position(controller)
+    return 0 if value is None else value
+
+
 _BY_NAME = {name: n for n, (name, _, _) in AXIS_PROCESS_DATA.items()}
+
+
+def _normtrackerr(c) -> int:
+    v = abs(c.axis.profile.velocity)
+    return round(100 * abs(c.axis.tracking_error) / v) if v > 1e-6 else 0
 
 
 def read_sysvar(controller, index: int) -> int | None:
