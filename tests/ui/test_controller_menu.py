@@ -65,7 +65,8 @@ def test_programs_save_start_delete(window, qtbot):
     """DG 2627-2794: Save compiles the current program into permanent memory under the next number; Start
     runs the selected one; Delete removes it."""
     editor = window.new_file()
-    editor.setPlainText('PRINT "stored"\n')
+    # the delay: an Autostart program that ends restarts at once (DG 2766-2768), so it prints once a second
+    editor.setPlainText('PRINT "stored"\nDELAY 1000\n')
     assert window.development.connect_default()
     dialog = cm.ProgramsDialog(window)
     qtbot.addWidget(dialog)
@@ -77,6 +78,12 @@ def test_programs_save_start_delete(window, qtbot):
     assert dialog.start()
     qtbot.waitUntil(lambda: "[01] stored" in window.messages.toPlainText(), timeout=5000)
     dialog.table.selectRow(0)
+    dialog.autostart(True)
+    assert dialog.table.item(0, 2).text() == "⦿" and dialog.table.item(1, 2).text() == ""
+    window.bridge.link.call("power_on")  # DG 2707: the Autostart program starts at power on
+    qtbot.waitUntil(lambda: window.messages.toPlainText().count("[01] stored") >= 2, timeout=5000)
+    dialog.autostart(False)
+    assert dialog.table.item(0, 2).text() == ""
     dialog.delete()
     assert [p["number"] for p in dialog.programs()] == [7]
     dialog.delete_all()

@@ -26,6 +26,8 @@ OPERATIONS: dict[str, tuple[str, ...]] = {
     "download": ("image", "number", "name"),         # image: base64 of ProgramImage.to_bytes(); number None = temporary
     "list_programs": (),
     "delete_program": ("number",),
+    "set_autostart": ("number",),                    # Autostart on (number) / off (None)
+    "power_on": (),                                  # simulated controllers: off and on (Autostart runs)
     "start": ("number", "step"),                     # None = the temporary program; step: stop before statement 1
     "break": (),                                     # [Esc]
     "continue": (),

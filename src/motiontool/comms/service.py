@@ -12,6 +12,7 @@ from motiontool.comms.protocol import OPERATIONS, PROTOCOL_VERSION, LinkEvent, R
 from motiontool.kernel.arrays import MAX_ARRAY_ELEMENTS
 from motiontool.kernel.controller import Controller, Event
 from motiontool.kernel.errors import ControllerError
+from motiontool.kernel.programs import ProgramStore
 from motiontool.kernel.sysvars import read_sysvar, sysvar_name
 
 RESETS = ("parameters", "user", "arrays", "all")  # Controller → Reset (op_reset)
@@ -46,7 +47,7 @@ def signal_reader(name: str) -> Callable[[Controller], float]:
 class ControllerService:
     def __init__(self, controller: Controller | None = None):
         self.controller = controller or Controller()
-        self.programs: dict[int, ProgramImage] = {}
+        self.store = ProgramStore()          # programs saved on the controller, Autostart and Restart
         self.temporary: ProgramImage | None = None
         self.listeners: list[Callable[[LinkEvent], None]] = []
         self.controller.listeners.append(self._forward)
@@ -65,6 +66,7 @@ class ControllerService:
     # --- time ------------------------------------------------------------------------------------------
     def tick(self) -> None:
         self.controller.tick()
+        self.store.tick(self.controller)
         if self.stream_signals:
             c = self.controller
             if c.time_ms % self.stream_interval == 0:
@@ -150,15 +152,31 @@ class ControllerService:
         if number is None:
             self.temporary = program
         else:
-            if not 0 <= number <= 90:
-                raise ValueError(f"program number {number} outside 0..90")
-            self.programs[number] = program
+            self.store.save(number, program)
+
+    @property
+    def programs(self) -> dict[int, ProgramImage]:
+        return self.store.programs
 
     def op_list_programs(self) -> list[dict]:
-        return [{"number": n, "name": p.name} for n, p in sorted(self.programs.items())]
+        return self.store.listing()
 
     def op_delete_program(self, number) -> None:
-        self.programs.pop(number, None)
+        self.store.delete(number)
+
+    def op_set_autostart(self, number) -> None:
+        self.store.set_autostart(number)
+
+    def op_power_on(self) -> None:
+        """Simulated controllers: switch off and on (DG 2699-2788): the program stops, the axis stands,
+        errors are gone, SET values revert; parameters, arrays and saved programs stay; Autostart runs."""
+        c = self.controller
+        if c.program_state in ("running", "break"):
+            c.break_program()
+        if c.error:
+            c.clear_error()
+        c.program_state = "idle"
+        self.store.power_on(c)
 
     def op_start(self, number=None, step=False) -> None:
         program = self.temporary if number is None else self.programs.get(number)
@@ -167,8 +185,11 @@ class ControllerService:
         c = self.controller
         if c.program_state == "running":
             raise RuntimeError("the controller is executing a program")
-        c.load(program)
-        c.start()
+        if number is not None:
+            self.store.start(c, number)  # by hand: an ordinary program, no Restart afterwards
+        else:
+            c.load(program)
+            c.start()
         if step:  # Prepare Singlestep (DG 2432-2434): loaded, stopped before the first statement
             c.single_step = True
 
@@ -230,7 +251,7 @@ class ControllerService:
         if what in ("arrays", "all"):
             c.arrays.delete()
         if what == "all":
-            self.programs.clear()
+            self.store.delete_all()
             self.temporary = None
 
     def op_advance(self, ms) -> None:

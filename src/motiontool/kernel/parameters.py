@@ -18,6 +18,9 @@ def raw_value(parameter: Parameter, value: int | float) -> int:
     return parameter.to_raw(value)
 
 
+PRGPAR_INDEX = 3380
+
+
 class ParameterStore:
     def __init__(self, db: ParameterDatabase | None = None):
         self.db = db or database()
@@ -49,7 +52,10 @@ class ParameterStore:
             except ParameterError as exc:
                 raise ControllerError(183, str(exc)) from None
         self.values[p.index] = int(value)
-        if source != "program":  # a write from the IDE/LCP is the controller's value, not a program's SET
+        # A write from the IDE/LCP is the controller's value, not a program's SET. 33-80 PRGPAR is set by a
+        # program for the time after its end (DG 2768-2772: "if Activated Program Number is not reset, then
+        # the current program will be executed repeatedly"), so it does not revert either (K22).
+        if source != "program" or p.index == PRGPAR_INDEX:
             self.saved[p.index] = int(value)
         if self.on_change:
             self.on_change(p.index, int(value), source)

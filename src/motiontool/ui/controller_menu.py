@@ -144,8 +144,8 @@ class ProgramsDialog(QDialog):
         super().__init__(w)
         self.w = w
         self.setWindowTitle(f"Programs — controller {w.bridge.controller_id}")
-        self.table = QTableWidget(0, 2)
-        self.table.setHorizontalHeaderLabels(["No.", "Name"])
+        self.table = QTableWidget(0, 3)
+        self.table.setHorizontalHeaderLabels(["No.", "Name", "Autostart"])
         self.table.horizontalHeader().setStretchLastSection(True)
         self.table.verticalHeader().hide()
         self.table.setSelectionBehavior(QAbstractItemView.SelectionBehavior.SelectRows)
@@ -153,6 +153,8 @@ class ProgramsDialog(QDialog):
         buttons = QHBoxLayout()
         self.buttons = {}
         for text, slot in (("Save", self.save), ("Save as...", self.save_as), ("Start", self.start),
+                           ("Autostart on", lambda: self.autostart(True)),
+                           ("Autostart off", lambda: self.autostart(False)),
                            ("Delete", self.delete), ("Delete all", self.delete_all), ("Close", self.accept)):
             button = QPushButton(text)
             button.clicked.connect(lambda _checked=False, s=slot: s())
@@ -177,6 +179,7 @@ class ProgramsDialog(QDialog):
         for r, p in enumerate(rows):
             self.table.setItem(r, 0, QTableWidgetItem(str(p["number"])))
             self.table.setItem(r, 1, QTableWidgetItem(p["name"]))
+            self.table.setItem(r, 2, QTableWidgetItem("⦿" if p.get("autostart") else ""))
 
     def selected_number(self) -> int | None:
         row = self.table.currentRow()
@@ -231,6 +234,16 @@ class ProgramsDialog(QDialog):
             self.w.messages.ide(f"Programs: {exc}")
             return False
         return True
+
+    def autostart(self, on: bool) -> None:
+        """Autostart on / off (DG 2719-2727): one program at most carries the mark."""
+        number = self.selected_number()
+        if number is None:
+            return
+        current = next((p["number"] for p in self.programs() if p.get("autostart")), None)
+        if on or current == number:
+            self.link.call("set_autostart", number=number if on else None)
+        self.refresh()
 
     def delete(self) -> None:
         number = self.selected_number()
