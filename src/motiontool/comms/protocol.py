@@ -37,6 +37,9 @@ OPERATIONS: dict[str, tuple[str, ...]] = {
     "read_signals": ("signals",),                    # one-off poll (polling scope) → [values]
     "list_recordings": (),
     "upload_recording": ("index",),                  # → {"name", "interval_ms", "indices", "names", "samples"}
+    "start_recording": ("signals", "interval_ms", "destination", "cyclic", "count"),  # Single Shot scope
+    "recording_status": (),                          # → {"running", "samples", "limit", "taken"} | None
+    "stop_recording": (),                            # → {"signals", "time_ms", "samples", …} and forget it
     "error_history": (),
     "clear_error": (),
     "reset": ("what",),                              # "parameters" | "user" | "arrays" | "all" (Controller → Reset)

@@ -8,6 +8,7 @@ from collections.abc import Callable
 from typing import Any
 
 from motiontool.aposs.image import ImageError, ProgramImage
+from motiontool.comms import scope_recording
 from motiontool.comms.protocol import OPERATIONS, PROTOCOL_VERSION, LinkEvent, Request, Response, Status
 from motiontool.kernel.arrays import MAX_ARRAY_ELEMENTS
 from motiontool.kernel.controller import Controller, Event
@@ -55,6 +56,7 @@ class ControllerService:
         self.stream_interval = 0
         self._stream_buffer: list[list[float]] = []
         self._stream_times: list[int] = []
+        self.recording: scope_recording.ScopeRecording | None = None  # the Single Shot scope's
 
     def _forward(self, event: Event) -> None:
         self._publish(LinkEvent(event.kind, event.time_ms, event.text, event.number, event.line))
@@ -67,6 +69,8 @@ class ControllerService:
     def tick(self) -> None:
         self.controller.tick()
         self.store.tick(self.controller)
+        if self.recording is not None:
+            self.recording.sample(self.controller)
         if self.stream_signals:
             c = self.controller
             if c.time_ms % self.stream_interval == 0:
@@ -176,6 +180,7 @@ class ControllerService:
         if c.error:
             c.clear_error()
         c.program_state = "idle"
+        self.recording = None  # a Single Shot recording lives in RAM
         self.store.power_on(c)
 
     def op_start(self, number=None, step=False) -> None:
@@ -221,13 +226,37 @@ class ControllerService:
         return [signal_reader(name)(c) for name in signals]
 
     def op_list_recordings(self) -> list[dict]:
-        return [{"index": i, "name": r.name, "samples": len(r.samples), "indices": r.indices}
-                for i, r in enumerate(self.controller.recorder.recordings)]
+        return [{"index": i, "name": r.name, "samples": len(r.samples), "indices": r.indices,
+                 "running": r.running} for i, r in enumerate(self.controller.recorder.recordings)]
 
     def op_upload_recording(self, index) -> dict:
         r = self.controller.recorder.recordings[index]
         return {"name": r.name, "interval_ms": r.interval_ms, "start_ms": r.start_ms, "indices": r.indices,
-                "names": [sysvar_name(i) for i in r.indices], "samples": [list(s) for s in r.samples]}
+                "names": [sysvar_name(i) for i in r.indices], "samples": [list(s) for s in r.samples],
+                # the first kept set: sampling starts on the tick after TESTSTART; cyclic drops the oldest
+                "first_ms": r.start_ms + 1 + (r.taken - len(r.samples)) * r.interval_ms}
+
+    def op_start_recording(self, signals, interval_ms=1, destination="DYNMEM", cyclic=False, count=0) -> dict:
+        """Single Shot (DG 5287-5324): the scope sets up and starts a recording; a new one replaces the old."""
+        readers = [signal_reader(str(name)) for name in signals]
+        for name, read in zip(signals, readers, strict=True):
+            try:
+                read(self.controller)
+            except ControllerError:
+                raise ValueError(f"unknown signal '{name}'") from None
+        self.recording = scope_recording.configure(self.controller, [str(s) for s in signals], readers,
+                                                   interval_ms, destination, cyclic, int(count))
+        return self.recording.status()
+
+    def op_recording_status(self) -> dict | None:
+        return None if self.recording is None else self.recording.status()
+
+    def op_stop_recording(self) -> dict:
+        if self.recording is None:
+            raise ValueError("no Single Shot recording was started")
+        data = self.recording.upload()
+        self.recording = None
+        return data
 
     def op_error_history(self) -> list[dict]:
         return [vars(e).copy() for e in self.controller.error_history]
@@ -250,6 +279,7 @@ class ControllerService:
                 params.values[p.index] = params.saved[p.index] = p.to_raw(p.default)
         if what in ("arrays", "all"):
             c.arrays.delete()
+            self.recording = None  # it may have been writing into a user array
         if what == "all":
             self.store.delete_all()
             self.temporary = None

@@ -1,1 +1,22 @@
-"""scope/ui"""
+"""The oscilloscope's Qt view (pyqtgraph, PySide6). `open_scope(main_window)` is what Tools → Oscilloscope
+calls; `open_scope_file(path)` opens a saved .zbo or an old Testrun .txt."""
+
+from __future__ import annotations
+
+from PySide6.QtCore import Qt
+
+from motiontool.scope.ui.window import ScopeWindow, open_scope_file
+
+__all__ = ["ScopeWindow", "open_scope", "open_scope_file"]
+
+
+def open_scope(main_window, variant: str = "free_run") -> ScopeWindow:
+    """Tools → Oscilloscope (DG 5265-5273): bind to the APOSS window's controller, connecting the default
+    controller first if there is none. The window is kept by the main window (its Qt parent)."""
+    development = getattr(main_window, "development", None)
+    if development is not None and not main_window.bridge.connected:
+        development.connect_default()
+    window = ScopeWindow(main_window.bridge, variant, parent=main_window)
+    window.setWindowFlag(Qt.Window, True)  # a top-level window owned by the main window
+    window.show()
+    return window

@@ -1,0 +1,92 @@
+"""The Single Shot recording the oscilloscope configures on the controller (DG 4662-4674, 5287-5324).
+
+It is the TESTSETP recorder driven from the link instead of from a program: storage in dynamic memory or a
+user array, cyclic or stop-when-full, a fixed count of sample sets or "fill available space", an interval in
+ms. It belongs to the link, not to the program, so it survives a program start, [Esc] and the program's end
+("Aborting the program does not stop the Oscilloscope from recording", DG 5859).
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+from motiontool.kernel.errors import ControllerError
+from motiontool.kernel.recorder import DYNAMIC_MEMORY, MAX_INDICES
+
+
+@dataclass
+class ScopeRecording:
+    signals: list[str]
+    readers: list[Callable]
+    interval_ms: int
+    destination: str            # "DYNMEM" or the name of a user array
+    array: object | None        # the user array (has .name and .data), None = dynamic memory
+    cyclic: bool
+    limit: int                  # sample sets to keep
+    start_ms: int
+    samples: deque = field(default_factory=deque)
+    times: deque = field(default_factory=deque)
+    running: bool = True
+    taken: int = 0
+    countdown: int = 0
+
+    def sample(self, controller) -> None:
+        """Called once per controller tick (1 ms)."""
+        if not self.running:
+            return
+        if self.countdown > 0:
+            self.countdown -= 1
+            return
+        self.countdown = self.interval_ms - 1
+        if len(self.samples) >= self.limit and not self.cyclic:
+            self.running = False  # stop when full: new data is discarded (DG 5308)
+            return
+        row = [read(controller) for read in self.readers]
+        self.samples.append(row)
+        self.times.append(controller.time_ms)
+        if self.array is not None:  # the sets occupy the user array like a TESTSETP recording
+            k = len(row)
+            slot = (self.taken % self.limit) * k
+            self.array.data[slot:slot + k] = [int(round(v)) for v in row]
+        self.taken += 1
+
+    def status(self) -> dict:
+        return {"running": self.running, "samples": len(self.samples), "limit": self.limit, "taken": self.taken,
+                "interval_ms": self.interval_ms}
+
+    def upload(self) -> dict:
+        return {"name": f"Single Shot ({self.destination})", "interval_ms": self.interval_ms,
+                "start_ms": self.start_ms, "signals": list(self.signals), "time_ms": list(self.times),
+                "samples": [list(s) for s in self.samples], "taken": self.taken}
+
+
+def configure(controller, signals: list[str], readers: list[Callable], interval_ms: int, destination: str,
+              cyclic: bool, count: int) -> ScopeRecording:
+    """Check the set-up as TESTSTART would (errors 195, 171, 194) and return a started recording."""
+    if not signals:
+        raise ValueError("a Single Shot recording needs at least one signal")
+    if len(signals) > MAX_INDICES:
+        raise ControllerError(195, f"{len(signals)} values to record (at most {MAX_INDICES})")
+    if int(interval_ms) < 1:
+        raise ValueError(f"sample interval {interval_ms} ms: at least 1 ms")
+    if int(count) < 0:
+        raise ValueError(f"sample count {count}: 0 (fill available space) or more")
+    k = len(signals)
+    array = None
+    if str(destination).upper() == "DYNMEM":
+        destination = "DYNMEM"
+        capacity = DYNAMIC_MEMORY // k
+    else:
+        found = [a for a in controller.arrays.arrays if a.name.upper() == str(destination).upper()]
+        if not found:
+            raise ValueError(f"no array '{destination}' on the controller (the program must DIM it first)")
+        array = found[0]
+        capacity = len(array.data) // k
+    if count > capacity:
+        raise ControllerError(171 if array is not None else 194,
+                              f"{count} sample sets do not fit in {destination} ({capacity} fit)")
+    limit = int(count) if count > 0 else capacity
+    return ScopeRecording(list(signals), readers, int(interval_ms), destination, array, bool(cyclic), limit,
+                          controller.time_ms, deque(maxlen=limit), deque(maxlen=limit))

@@ -1,0 +1,624 @@
+"""The oscilloscope window (DG 4600-6011, ide-spec group 6): toolbar, chart + navigation, curve list.
+
+It talks to the controller only through a comms Link: given a LinkBridge (the IDE's) it uses the bridge's
+link and its queued `samples` signal; given a plain Link it relays the link's events into the GUI thread
+itself. Opened from a file it has no link at all until Reconnect (DG 5277-5285).
+"""
+
+from __future__ import annotations
+
+import contextlib
+from pathlib import Path
+
+from PySide6.QtCore import QObject, Qt, QTimer, Signal
+from PySide6.QtGui import QAction, QActionGroup, QKeySequence
+from PySide6.QtWidgets import (
+    QDockWidget,
+    QFileDialog,
+    QInputDialog,
+    QLabel,
+    QMainWindow,
+    QMessageBox,
+    QProgressDialog,
+    QSpinBox,
+    QSplitter,
+)
+
+from motiontool.comms.protocol import LinkError
+from motiontool.scope import derived, zbo
+from motiontool.scope.acquisition import (
+    FreeRun,
+    Polling,
+    SingleShot,
+    default_group,
+    list_testsetp,
+    load_testsetp,
+    new_curve,
+)
+from motiontool.scope.curves import Scope
+from motiontool.scope.export import export_csv
+from motiontool.scope.measure import cursor_frequency
+from motiontool.scope.testrun import read_testrun
+from motiontool.scope.tune import Tune
+from motiontool.scope.ui.chart import Chart
+from motiontool.scope.ui.curve_list import CurveList
+from motiontool.scope.ui.dialogs import AddCurveDialog, PropertiesDialog, RecordingDialog, TriggerDialog, TunePanel
+from motiontool.scope.ui.fft import FftView
+from motiontool.scope.ui.list_menu import show_list_menu
+
+TITLES = {"free_run": "Free Run", "polling": "Free Run (polling)", "single_shot": "Single Shot",
+          "testsetp": "TESTSETP", "tune": "Tune"}
+REFRESH_MS = 50
+LIST_EVERY = 4          # list values and title every 4th chart refresh while recording
+
+
+class _Relay(QObject):
+    event = Signal(object)
+
+
+class ScopeWindow(QMainWindow):
+    def __init__(self, link_or_bridge=None, variant: str = "free_run", scope: Scope | None = None,
+                 parent=None, ask: bool = True, path: Path | None = None):
+        super().__init__(parent)
+        self.setAttribute(Qt.WA_DeleteOnClose, False)
+        self.ask = ask            # False: no modal dialogs (tests, scripted use)
+        self.path = path
+        self.scope = scope or Scope(variant)
+        self.bridge = None
+        self._link = None
+        self._relay = _Relay(self)
+        self._relay.event.connect(self._on_event)
+        self.free_run: FreeRun | None = None
+        self.polling = Polling(self.scope, None)
+        self.single_shot: SingleShot | None = None
+        self.tune: Tune | None = None
+        self.paused = False
+        self.mouse_t: float | None = None
+        self._ticks = 0
+        self.trigger = None          # (curve name, Trigger) for Free Run, or None
+        self.trigger_single = True
+        self._recording_status = None
+
+        self.chart = Chart(self.scope)
+        self.list = CurveList(self.scope)
+        split = QSplitter(Qt.Vertical)
+        split.addWidget(self.chart)
+        split.addWidget(self.list)
+        split.setSizes([520, 200])
+        self.setCentralWidget(split)
+        self.readout = QLabel("")
+        self.statusBar().addPermanentWidget(self.readout)
+        self.tune_panel = TunePanel(Tune(self.scope, None).config)
+        self.tune_dock = QDockWidget("Tune", self)
+        self.tune_dock.setWidget(self.tune_panel)
+        self.addDockWidget(Qt.RightDockWidgetArea, self.tune_dock)
+        self.tune_panel.run.clicked.connect(self.run_tune)
+        self._build_actions()
+        self.chart.cursor_moved.connect(lambda *_: self._update_readout())
+        self.chart.mouse_time.connect(self._mouse_time)
+        self.list.visibility_changed.connect(self.redraw)
+        self.list.axis_clicked.connect(self.toggle_axis_side)
+        self.list.setContextMenuPolicy(Qt.CustomContextMenu)
+        self.list.customContextMenuRequested.connect(lambda pos: show_list_menu(self, pos))
+
+        self.refresh_timer = QTimer(self)
+        self.refresh_timer.setInterval(REFRESH_MS)
+        self.refresh_timer.timeout.connect(self._tick)
+        self.poll_timer = QTimer(self)
+        self.poll_timer.timeout.connect(self._poll)
+        self.tune_timer = QTimer(self)
+        self.tune_timer.setInterval(100)
+        self.tune_timer.timeout.connect(self._tune_tick)
+        self.resize(1200, 800)
+        if link_or_bridge is not None:
+            self.set_link(link_or_bridge)
+        self.set_variant(self.scope.variant, initial=True)
+
+    # --- the link ------------------------------------------------------------------------------------------
+    @property
+    def link(self):
+        return self.bridge.link if self.bridge is not None else self._link
+
+    def set_link(self, link_or_bridge) -> None:
+        """Bind to a LinkBridge (anything with a `samples` signal and a `link`) or a plain Link."""
+        if hasattr(link_or_bridge, "samples") and hasattr(link_or_bridge, "link"):
+            self.bridge = link_or_bridge
+            self.bridge.samples.connect(self._on_samples)
+            self.bridge.status_changed.connect(self._on_status)
+            self.bridge.connection_changed.connect(self._on_connection)
+            self.list.interface = getattr(self.bridge, "description", "")
+        else:
+            self._link = link_or_bridge
+            self._link.subscribe(self._relay.event.emit)  # kernel thread → queued into the GUI thread
+            self.list.interface = getattr(link_or_bridge, "kind", "")
+        self.polling.link = self.link
+        self._on_status(None)
+
+    def _on_event(self, event) -> None:
+        if event.kind == "samples":
+            self._on_samples(event.data)
+        elif event.kind == "program":
+            self._on_status(None)
+
+    def _on_samples(self, data) -> None:
+        if self.free_run is not None:
+            self.free_run.feed(data)
+
+    def _on_status(self, status) -> None:
+        link = self.link
+        if link is None:
+            state = "unbound"
+        else:
+            try:
+                status = status or link.status()
+                state = {"running": "running", "error": "error"}.get(status.program_state, "connected")
+                if status.error:
+                    state = "error"
+            except LinkError:
+                state = "lost"
+        self.list.controller_state = state
+        self.list.update_values(self.mouse_t)
+
+    def _on_connection(self, state: str) -> None:
+        self.list.controller_state = "lost" if state == "lost" else self.list.controller_state
+        self.list.update_values(self.mouse_t)
+
+    # --- actions -------------------------------------------------------------------------------------------
+    def _build_actions(self) -> None:
+        tb = self.addToolBar("Oscilloscope")
+        tb.setObjectName("scope-toolbar")
+        self.mode_group = QActionGroup(self)
+        self.mode_actions: dict[str, QAction] = {}
+        for variant, title in TITLES.items():
+            a = QAction(title, self, checkable=True)
+            a.triggered.connect(lambda _=False, v=variant: self.set_variant(v))
+            self.mode_group.addAction(a)
+            tb.addAction(a)
+            self.mode_actions[variant] = a
+        tb.addSeparator()
+
+        def act(text, slot, shortcut=None, checkable=False):
+            a = QAction(text, self, checkable=checkable)
+            a.triggered.connect(slot)
+            if shortcut:
+                a.setShortcut(QKeySequence(shortcut))
+            tb.addAction(a)
+            return a
+
+        self.start_action = act("Start", self.start, "F9")
+        self.pause_action = act("Pause", self.pause)
+        self.stop_action = act("Stop", self.stop, "Shift+F9")
+        self.delete_action = act("Delete data", self.delete_data)
+        self.add_action = act("Add curve", self.add_curve_dialog)
+        self.load_action = act("Load TESTSETP", self.load_recordings)
+        self.trigger_action = act("Trigger…", self.trigger_dialog)
+        self.poll_box = QSpinBox()
+        self.poll_box.setRange(1, 60_000)
+        self.poll_box.setSuffix(" ms")
+        self.poll_box.setPrefix("Poll ")
+        self.poll_box.setValue(self.scope.settings.poll_ms)
+        self.poll_box.setToolTip("Poll rate of polled curves (Settings → Oscilloscope, DG 5975-6001)")
+        self.poll_box.valueChanged.connect(self._set_poll_ms)
+        self.poll_box_action = tb.addWidget(self.poll_box)
+        tb.addSeparator()
+        self.zoom_action = act("Zoom Reset", self.zoom_reset, "Ctrl+0")
+        self.cursor_a = act("Cursor A", lambda on: self.chart.show_cursor(0, on), checkable=True)
+        self.cursor_b = act("Cursor B", lambda on: self.chart.show_cursor(1, on), checkable=True)
+        self.cursor_a.toggled.connect(self._update_readout)
+        self.cursor_b.toggled.connect(self._update_readout)
+        self.fft_action = act("FFT", self.show_fft)
+        self.shift_action = act("Shift to 0", self.toggle_shift, checkable=True)
+        self.shift_action.setChecked(self.chart.shift_to_zero)
+        self.export_action = act("Export", self.export_dialog)
+        self.save_action = act("Save", self.save_dialog, "Ctrl+S")
+        self.open_action = act("Open", self.open_dialog, "Ctrl+O")
+        self.reconnect_action = QAction("Reconnect", self)
+        file_menu = self.menuBar().addMenu("&File")
+        for a in (self.open_action, self.save_action):
+            file_menu.addAction(a)
+        save_template = file_menu.addAction("Save without Data")
+        save_template.triggered.connect(lambda: self.save_dialog(with_data=False))
+        file_menu.addAction(self.export_action)
+        view = self.menuBar().addMenu("&View")
+        for a in (self.cursor_a, self.cursor_b, self.zoom_action, self.shift_action):
+            view.addAction(a)
+
+    def set_variant(self, variant: str, initial: bool = False) -> None:
+        """Switch the variant: Free Run adds "Test Group (Free Run)", Single Shot asks for the recording and adds
+        "Test Group (Single Shot)", TESTSETP uploads what it finds (DG 5287-5347)."""
+        if self.running:
+            self.stop()
+        self.scope.variant = variant
+        self.mode_actions[variant].setChecked(True)
+        names = {g.name for g in self.scope.groups}
+        if variant == "free_run" and "Test Group (Free Run)" not in names:
+            default_group(self.scope, "free_run")
+        elif variant == "single_shot" and "Test Group (Single Shot)" not in names:
+            group = default_group(self.scope, "single_shot")
+            if self.ask:
+                RecordingDialog(group, self).exec()
+        self.start_action.setEnabled(variant not in ("testsetp", "tune"))  # DG 5347: Start is disabled
+        self.pause_action.setEnabled(variant in ("free_run", "polling"))
+        self.load_action.setVisible(variant == "testsetp")
+        self.poll_box_action.setVisible(variant in ("free_run", "polling"))
+        self.trigger_action.setVisible(variant == "free_run")
+        self.tune_dock.setVisible(variant == "tune")
+        if variant == "tune" and self.link is not None:
+            self.tune = Tune(self.scope, self.link, self.tune_panel.config())
+            with contextlib.suppress(LinkError):
+                self.tune_panel.set_parameters(self.tune.read_parameters())
+        self.list.rebuild()
+        if variant == "testsetp" and self.link is not None and not initial or (
+                variant == "testsetp" and initial and self.link is not None and not self.scope.curves):
+            self.load_recordings()
+        self._update_title()
+        self.redraw()
+
+    @property
+    def running(self) -> bool:
+        return bool((self.free_run and self.free_run.running) or self.polling.running or
+                    (self.single_shot and self.single_shot.running))
+
+    # --- curves ----------------------------------------------------------------------------------------------
+    def add_signal_curve(self, signal: str, group: str | None = None, name: str | None = None):
+        """A curve of a link signal in a group ("Test Group (…)") or polled when group is None."""
+        method = "polled" if group is None else self.scope.group(group).method
+        curve = new_curve(self.scope, signal, group or "", method, name=name)
+        self.list.rebuild()
+        self.redraw()
+        return curve
+
+    def add_derived_curve(self, spec, name: str):
+        curve = derived.add_derived(self.scope, spec, name)
+        self.list.rebuild()
+        self.redraw()
+        return curve
+
+    def add_curve_dialog(self, dlg: AddCurveDialog | None = None) -> None:
+        """Add Curve; a dialog given here is already filled in (scripted use) and counts as accepted."""
+        if dlg is None:
+            dlg = AddCurveDialog([g.name for g in self.scope.groups], [c.name for c in self.scope.curves], self)
+            if not dlg.exec():
+                return
+        try:
+            if dlg.kind.currentText() == "Derived":
+                spec = derived.DerivedSpec(dlg.derived_kind.currentText(), dlg.base.currentText(),
+                                           dlg.second.currentText(), expression=dlg.expression.text(),
+                                           variables={"a": dlg.base.currentText(), "b": dlg.second.currentText()})
+                self.add_derived_curve(spec, dlg.name.text() or f"{spec.kind} {spec.base}")
+            elif dlg.kind.currentText() == "Variable":  # polled through the debug read (DG 5552-5622)
+                name = dlg.signal.text().strip()
+                new_curve(self.scope, name, "", "variable", name=dlg.name.text() or f"1: {name}")
+                self.list.rebuild()
+                self.redraw()
+            else:
+                group = dlg.method.currentText()
+                self.add_signal_curve(dlg.signal.text(), None if group.startswith("Polled") else group,
+                                      dlg.name.text() or None)
+        except (ValueError, KeyError) as exc:
+            QMessageBox.warning(self, "Add Curve", str(exc))
+
+    def load_recordings(self) -> None:
+        """TESTSETP: one recording is loaded at once; with several the user picks (DG 5326-5333)."""
+        if self.link is None:
+            return
+        found = list_testsetp(self.link)
+        if not found:
+            self.statusBar().showMessage("No TESTSETP recording on the controller", 5000)
+            return
+        chosen = found[-1]
+        if len(found) > 1 and self.ask:
+            labels = [f"{r['index']}: {r['name']} ({r['samples']} sets)" for r in found]
+            text, ok = QInputDialog.getItem(self, "TESTSETP", "Recording to upload:", labels, len(labels) - 1,
+                                            False)
+            if not ok:
+                return
+            chosen = found[labels.index(text)]
+        label = "" if not self.scope.curves else f"#{chosen['index']} "
+        load_testsetp(self.scope, self.link, chosen["index"], label=label)
+        self.list.rebuild()
+        self.zoom_reset()
+
+    # --- run -------------------------------------------------------------------------------------------------
+    def start(self) -> None:
+        link = self.link
+        if link is None:
+            QMessageBox.warning(self, "Oscilloscope", "No controller connected (Reconnect first).")
+            return
+        resume = self.paused
+        if resume:
+            span = self.scope.time_span()
+            if span:
+                self.scope.pauses.append(span[1])  # the red bar where recording resumed (DG 5943)
+        else:
+            self.scope.pauses.clear()
+        self.paused = False
+        try:
+            if self.scope.variant == "single_shot":
+                group = next((g for g in self.scope.groups if g.method == "single_shot" and g.active), None)
+                if group is None:
+                    raise ValueError("no active Single Shot group")
+                self.single_shot = SingleShot(self.scope, link, group.name)
+                self.single_shot.start()
+            else:
+                groups = [g for g in self.scope.groups if g.method == "free_run" and g.active
+                          and any(c.active for c in self.scope.members(g.name))]
+                if groups:
+                    self.free_run = FreeRun(self.scope, link, groups[0].name)
+                    self.free_run.trigger, self.free_run.single = self.trigger, self.trigger_single
+                    self.free_run.start(clear=not resume)
+                self.polling.link = link
+                if self.polling.curves():
+                    self.polling.start(clear=not resume)
+                    self.poll_timer.setInterval(self.scope.settings.poll_ms)
+                    self.poll_timer.start()
+                if not groups and not self.polling.curves():
+                    raise ValueError("no active curve to record: add a curve first")
+        except (ValueError, LinkError) as exc:
+            QMessageBox.warning(self, "Oscilloscope", str(exc)) if self.ask else None
+            self.statusBar().showMessage(str(exc), 10000)
+            return
+        self.chart.live = True
+        self.refresh_timer.start()
+        self._update_title()
+
+    def pause(self) -> None:
+        if self.running and self.scope.variant != "single_shot":
+            self._stop_acquisition()
+            self.paused = True
+            self._finish_run()
+
+    def stop(self) -> None:
+        """Stop ends only the recording; the program keeps running (DG 4627, 5859). Single Shot uploads now."""
+        was_single = self.single_shot is not None and self.single_shot.running
+        self._stop_acquisition()
+        if was_single:
+            progress = QProgressDialog("Uploading the recording …", None, 0, 0, self)
+            progress.setWindowTitle("Single Shot")
+            progress.show()
+            try:
+                sets = self.single_shot.stop()
+                self.statusBar().showMessage(f"Uploaded {sets} sample sets", 10000)
+            except LinkError as exc:
+                self.statusBar().showMessage(f"Upload failed: {exc}", 10000)
+            progress.close()
+        self.paused = False
+        self._finish_run()
+
+    def _stop_acquisition(self) -> None:
+        self.poll_timer.stop()
+        self.polling.stop()
+        if self.free_run is not None:
+            with contextlib.suppress(LinkError):
+                self.free_run.stop()
+
+    def _finish_run(self) -> None:
+        self.refresh_timer.stop()
+        self.chart.live = False
+        self.chart.set_pauses(self.scope.pauses)
+        self.zoom_reset()
+        self._update_title()
+
+    def show_fft(self) -> FftView:
+        self._fft = FftView(self)
+        self._fft.show()
+        return self._fft
+
+    def trigger_dialog(self, dialog: TriggerDialog | None = None) -> None:
+        """Set the Free Run trigger; a dialog given here has been filled in and accepted already."""
+        if dialog is None:
+            dialog = TriggerDialog([c.name for c in self.scope.curves], self)
+            dialog.exec()
+        if dialog.result() != TriggerDialog.Accepted:
+            return
+        try:
+            self.trigger = dialog.trigger()
+        except ValueError as exc:
+            QMessageBox.warning(self, "Trigger", str(exc))
+            return
+        self.trigger_single = dialog.single.isChecked()
+        self.statusBar().showMessage("Trigger off" if self.trigger is None else
+                                     f"Trigger: {self.trigger[0]} {self.trigger[1].edge} {self.trigger[1].level:g}",
+                                     5000)
+
+    def _set_poll_ms(self, ms: int) -> None:
+        self.scope.settings.poll_ms = ms
+        if self.poll_timer.isActive():
+            self.poll_timer.setInterval(ms)
+        self._update_title()
+
+    def delete_data(self) -> None:
+        self.scope.clear_data()
+        self.redraw()
+
+    def _poll(self) -> None:
+        try:
+            self.polling.poll()
+        except LinkError as exc:
+            self.statusBar().showMessage(f"Polling stopped: {exc}", 10000)
+            self.stop()
+
+    def _tick(self) -> None:
+        if self.single_shot is not None and self.single_shot.running:
+            self._ticks += 1
+            if self._ticks % LIST_EVERY == 0:  # progress in the title; nothing is drawn (DG 5867)
+                try:
+                    self._recording_status = self.single_shot.status()
+                except LinkError:
+                    self._recording_status = None
+                self._update_title()
+            return
+        if self.free_run is not None and not self.free_run.running and not self.polling.running:
+            self._finish_run()  # a single triggered capture is complete
+            return
+        derived.refresh(self.scope)
+        span = self.scope.time_span()
+        if span and (self.free_run is None or self.free_run.trigger is None):  # follow the newest data
+            x0, x1 = self.chart.view.viewRange()[0]
+            width = max(x1 - x0, self.scope.settings.min_length_ms)
+            o = self.chart.origin()
+            if span[1] - o > x1 or span[1] - o < x0:
+                self.chart.view.setXRange(span[1] - o - width, span[1] - o, padding=0)
+        self.chart.refresh(navigation=False)  # the navigation pane is not drawn while recording (DG 5843)
+        self._ticks += 1
+        if self._ticks % LIST_EVERY == 0:  # numbers people read: 5 updates a second are plenty
+            self.list.update_values(self.mouse_t)
+            self._update_title()
+
+    def redraw(self) -> None:
+        derived.refresh(self.scope)
+        self.chart.refresh(navigation=not self.running)
+        self.list.sides = (self.chart.left_curve, self.chart.right_curve)
+        self.list.update_values(self.mouse_t)
+        self._update_readout()
+
+    def zoom_reset(self) -> None:
+        derived.refresh(self.scope)
+        self.chart.reset_ranges()
+        self.redraw()
+
+    def toggle_shift(self, on: bool) -> None:
+        self.chart.shift_to_zero = on
+        self.chart.set_pauses(self.scope.pauses)
+        for i in (0, 1):
+            if self.scope.cursors[i] is not None and self.chart.cursors[i].isVisible():
+                self.chart.set_cursor(i, self.scope.cursors[i])
+        self.zoom_reset()
+
+    # --- tune ------------------------------------------------------------------------------------------------
+    def run_tune(self) -> None:
+        if self.link is None:
+            return
+        if self.tune is None:
+            self.tune = Tune(self.scope, self.link)
+        self.tune.link = self.link
+        self.tune.config = self.tune_panel.config()
+        try:
+            self.tune.write_parameters(self.tune_panel.parameters())
+            if not self.tune_panel.overlay.isChecked():
+                for g in [g for g in self.scope.groups if g.name.startswith("Tune run")]:
+                    for c in self.scope.members(g.name):
+                        self.scope.remove_curve(c.name)
+            self.tune.begin()
+        except (ValueError, LinkError) as exc:
+            self.tune_panel.state.setText(str(exc))
+            return
+        self.tune_panel.run.setEnabled(False)
+        self.tune_panel.state.setText("Test move running …")
+        self.tune_timer.start()
+
+    def _tune_tick(self) -> None:
+        try:
+            if not self.tune.finished():
+                return
+            result = self.tune.finish()
+        except LinkError as exc:
+            self.tune_panel.state.setText(f"Test failed: {exc}")
+            result = None
+        self.tune_timer.stop()
+        self.tune_panel.run.setEnabled(True)
+        if result is not None:
+            self.tune_panel.add_result(result)
+            settle = "not settled" if result.settling_ms is None else f"settled after {result.settling_ms:.0f} ms"
+            self.tune_panel.state.setText(f"Run {result.run}: overshoot {result.overshoot:.4g} UU, {settle}, "
+                                          f"peak tracking error {result.peak_tracking_error:.4g}")
+            self.list.rebuild()
+            self.zoom_reset()
+
+    # --- read-outs -------------------------------------------------------------------------------------------
+    def _mouse_time(self, t: float) -> None:
+        self.mouse_t = t
+        if not self.running:
+            self.list.update_values(t)
+
+    def _update_readout(self, *_) -> None:
+        ta, tb = self.scope.cursors
+        parts = []
+        if ta is not None:
+            parts.append(f"A {ta:.1f} ms")
+        if tb is not None:
+            parts.append(f"B {tb:.1f} ms")
+        if ta is not None and tb is not None:
+            f = cursor_frequency(ta, tb)
+            parts.append(f"Δt {tb - ta:.1f} ms" + (f"   1/Δt {f:.4g} Hz" if f else ""))
+        self.readout.setText("   ".join(parts))
+        self.list.update_values(self.mouse_t)
+
+    def toggle_axis_side(self, name: str) -> None:
+        """Grid column (DG 4878-4912): a click gives the curve the left axis scale, a second click the right;
+        one curve owns each side, the others are scaled generically."""
+        if self.chart.left_curve == name:
+            self.chart.right_curve, self.chart.left_curve = name, None
+            self.chart.left_curve = next((c.name for c in self.scope.curves if c.visible and c.name != name), None)
+        else:
+            if self.chart.right_curve == name:
+                self.chart.right_curve = None
+            self.chart.left_curve = name
+        self.redraw()
+
+    def _update_title(self) -> None:
+        title = f"Oscilloscope — {TITLES[self.scope.variant]}"
+        if self.path is not None:
+            title += f" — {Path(self.path).name}"
+        if self.polling.running:
+            title += f" {self.polling.title()}"   # "[<poll ms>ms <load>%]" (DG 5416)
+        elif self.single_shot is not None and self.single_shot.running:
+            rec = self._recording_status
+            title += " [recording]" if not rec else f" [recording {rec['samples']}/{rec['limit']}]"
+        self.setWindowTitle(title)
+
+    def edit_properties(self, name: str, dialog: PropertiesDialog | None = None) -> bool:
+        """Properties (DG 5070-5236); scaling and ranges take effect at the next Zoom Reset (DG 5197)."""
+        if dialog is None:  # else: a dialog already filled in and accepted (scripted use, tests)
+            dialog = PropertiesDialog(self.scope.curve(name), [c.name for c in self.scope.curves], self)
+            dialog.exec()
+        if dialog.result() != PropertiesDialog.Accepted:
+            return False
+        self.list.rebuild()
+        self.zoom_reset()
+        return True
+
+    # --- files ---------------------------------------------------------------------------------------------
+    def save_to(self, path: Path | str, with_data: bool = True) -> None:
+        zbo.save(self.scope, path, with_data)
+        self.path = Path(path)
+        self._update_title()
+
+    def save_dialog(self, with_data: bool = True) -> None:
+        path, _ = QFileDialog.getSaveFileName(self, "Save oscilloscope", str(self.path or ""),
+                                              "Oscilloscope files (*.zbo)")
+        if path:
+            self.save_to(path if path.endswith(".zbo") else path + ".zbo", with_data)
+
+    def export_dialog(self) -> None:
+        path, _ = QFileDialog.getSaveFileName(self, "Export curves", "", "CSV (*.csv *.txt)")
+        if path:
+            export_csv(self.scope, path)
+
+    def open_dialog(self) -> None:
+        path, _ = QFileDialog.getOpenFileName(self, "Open oscilloscope", "",
+                                              "Oscilloscope files (*.zbo);;Old Testrun Files (*.txt)")
+        if path:
+            try:
+                window = open_scope_file(path)
+            except (ValueError, OSError) as exc:
+                QMessageBox.warning(self, "Open", str(exc))
+                return
+            window.show()
+            self._opened = window
+
+    def closeEvent(self, event) -> None:  # noqa: N802 - Qt override
+        self._stop_acquisition()
+        if self._link is not None:
+            self._link.unsubscribe(self._relay.event.emit)
+        super().closeEvent(event)
+
+
+def open_scope_file(path: Path | str, parent=None) -> ScopeWindow:
+    """File → Open of a .zbo or an old Testrun .txt: a scope window that is not connected (DG 5277-5285,
+    5357-5376). NotTestrun (a ValueError) means: open the .txt as text instead."""
+    path = Path(path)
+    scope = read_testrun(path) if path.suffix.lower() == ".txt" else zbo.load(path)
+    window = ScopeWindow(None, scope.variant, scope=scope, parent=parent, ask=False, path=path)
+    window.zoom_reset()
+    return window
