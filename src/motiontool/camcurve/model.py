@@ -14,6 +14,8 @@ import math
 from dataclasses import dataclass, field
 from enum import IntEnum
 
+import numpy as np
+
 #: Fix point types [DG L3998-4022]: Curve, Tangent, Trapezoid, 3'rd order.
 FIX_POINT_TYPES = ("C", "T", "CZ", "C3")
 #: Fix point type code stored in the controller array (our choice, docs/formats/cam-array.md).
@@ -76,6 +78,8 @@ def segment_kinds(types: list[str] | tuple[str, ...]) -> list[str]:
     so at least one curved segment always separates two straight sections [DG L3992].
     """
     n = len(types)
+    if set(types) == {"C"}:  # the common all-curve case, fast for long curves
+        return [SPLINE] * (n - 1)
     kinds: list[str] = []
     open_line = False
     for i, t in enumerate(types):
@@ -214,6 +218,9 @@ class Curve:
         pts = self.fix_points
         if len(pts) < 2:
             raise CurveError("fix_points", "at least 2 fix points are needed")
+        if self._points_plainly_valid():
+            segment_kinds([p.type for p in pts])
+            return
         for i, p in enumerate(pts):
             if not isinstance(p, FixPoint):
                 raise CurveError("fix_points", f"point {i + 1} is not a FixPoint")
@@ -231,6 +238,22 @@ class Curve:
         if self.interpolation and not self.on_grid(pts[-1].master):
             raise CurveError("fix_points", "the last fix point must lie on the interpolation grid")
         segment_kinds([p.type for p in pts])
+
+    def _points_plainly_valid(self) -> bool:
+        """Fast check of the common case (every rule below holds), vectorised for long curves; when it fails the
+        point-by-point checks find the first offending point for the message."""
+        pts = self.fix_points
+        if not all(type(p) is FixPoint for p in pts):
+            return False
+        values = [v for p in pts for v in (p.master, p.slave)]
+        if not {type(v) for v in values} <= {int, float}:
+            return False
+        arr = np.array(values, dtype=float)
+        if not np.isfinite(arr).all():
+            return False
+        masters = arr[0::2]
+        return bool(masters[0] == 0 and (np.diff(masters) > 0).all() and pts[-1].master == self.master_length
+                    and (not self.interpolation or self.on_grid(pts[-1].master)))
 
     def _validate_pairs(self) -> None:
         if len(self.start_stop_pairs) > MAX_USER_PAIRS + 1:

@@ -83,29 +83,34 @@ class CurveProfile:
         self.runs = self._spline_runs()
         gs, ge = self._boundary_gradients()
         self.start_gradient_used, self.end_gradient_used = gs, ge
-        breaks: list[float] = [0.0]
-        columns: list[np.ndarray] = []
         splines = {run[0]: self._run_spline(run, gs, ge) for run in self.runs}
         quintic_runs = {run[0] for run in self.runs if self._is_quintic(run)}
-        for k, kind in enumerate(self.kinds):
-            x0, x1, y0, y1, hk = self.x[k], self.x[k + 1], self.y[k], self.y[k + 1], h[k]
+        # piece p of the PPoly: segment k is piece k + (trapezoids before k); a trapezoid is two pieces
+        kinds = np.array(self.kinds)
+        trapezoid = kinds == TRAPEZOID
+        piece = np.arange(len(kinds)) + np.concatenate([[0], np.cumsum(trapezoid)[:-1]])
+        coeffs = np.zeros((_DEGREE + 1, len(kinds) + int(trapezoid.sum())))
+        breaks = np.empty(coeffs.shape[1] + 1)
+        breaks[piece] = self.x[:-1]
+        breaks[-1] = self.x[-1]
+        for first, cs in splines.items():  # whole spline runs at once (a curve may have 10 000 points)
+            if first not in quintic_runs:
+                coeffs[_DEGREE - 3:, piece[first:first + cs.c.shape[1]]] = cs.c
+        for k in np.nonzero((kinds != SPLINE) | np.isin(np.arange(len(kinds)), list(quintic_runs)))[0]:
+            kind, p = self.kinds[k], piece[k]
+            y0, y1, hk = self.y[k], self.y[k + 1], h[k]
             if kind == LINE:
-                columns.append(_column([y0, self.line_slopes[k]]))
-            elif kind == SPLINE and k in quintic_runs:
-                columns.append(_column(_quintic(hk, y0, self.line_slopes[k - 1], y1, self.line_slopes[k + 1])))
+                coeffs[:, p] = _column([y0, self.line_slopes[k]])
             elif kind == SPLINE:
-                start = max(r for r in splines if r <= k)
-                cs = splines[start]
-                columns.append(_column(list(cs.c[::-1, k - start])))
+                coeffs[:, p] = _column(_quintic(hk, y0, self.line_slopes[k - 1], y1, self.line_slopes[k + 1]))
             elif kind == CUBIC:
-                columns.append(_column(_cubic(hk, y0, self.line_slopes[k - 1], y1, self.line_slopes[k + 1])))
+                coeffs[:, p] = _column(_cubic(hk, y0, self.line_slopes[k - 1], y1, self.line_slopes[k + 1]))
             else:
                 assert kind == TRAPEZOID, kind
                 first, second = _trapezoid(hk, y0, self.line_slopes[k - 1], y1, self.line_slopes[k + 1])
-                columns += [_column(first), _column(second)]
-                breaks.append(x0 + hk / 2)
-            breaks.append(x1)
-        self.ppoly = PPoly(np.column_stack(columns), np.array(breaks), extrapolate=True)
+                coeffs[:, p], coeffs[:, p + 1] = _column(first), _column(second)
+                breaks[p + 1] = self.x[k] + hk / 2
+        self.ppoly = PPoly(coeffs, breaks, extrapolate=True)
         self._derivatives = [self.ppoly] + [self.ppoly.derivative(n) for n in (1, 2, 3)]
 
     # -- construction helpers ---------------------------------------------------------------------------------
@@ -220,23 +225,78 @@ class CurveProfile:
         return float(np.polyder(col, nu)(h if at_end else 0.0)) if nu else float(col(h if at_end else 0.0))
 
     def max_abs(self, nu: int) -> float:
-        """Exact maximum of |derivative nu| over one cycle (piece ends and interior stationary points)."""
-        best = 0.0
-        for i in range(self.ppoly.c.shape[1]):
-            p = np.polyder(np.poly1d(self.ppoly.c[:, i]), nu) if nu else np.poly1d(self.ppoly.c[:, i])
-            h = self.ppoly.x[i + 1] - self.ppoly.x[i]
-            candidates = [0.0, h]
-            dp = np.polyder(p)
-            if dp.order > 0 or dp.c[0] != 0:
-                candidates += [r.real for r in np.atleast_1d(dp.roots) if abs(r.imag) < 1e-12 and 0 < r.real < h]
-            best = max(best, float(np.max(np.abs(p(np.array(candidates))))))
-        return best
+        """Exact maximum of |derivative nu| over one cycle: piece ends and interior stationary points.
+
+        Vectorised over all pieces (a 10 000-point curve is recomputed while a point is dragged): the stationary
+        points are the real roots of derivative nu+1, found per piece from batched companion matrices grouped by
+        the polynomial's actual degree."""
+        asc = self.ppoly.c[::-1]  # ascending powers, shape (degree+1, pieces)
+        h = np.diff(self.ppoly.x)
+        deriv = _derive(asc, nu)
+        slope = _derive(deriv, 1)
+        t = np.concatenate([np.zeros((len(h), 1)), h[:, None], _roots_in(slope, h)], axis=1)
+        return float(np.max(np.abs(_horner(deriv, t)), initial=0.0))
+
+
+def _derive(asc: np.ndarray, nu: int) -> np.ndarray:
+    """Coefficients (ascending, per column) of the nu-th derivative."""
+    out = asc
+    for _ in range(nu):
+        if len(out) <= 1:
+            return np.zeros((1, asc.shape[1]))
+        out = out[1:] * np.arange(1, len(out))[:, None]
+    return out
+
+
+def _horner(asc: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Evaluate each piece's polynomial (column of asc) at the points of its row of t."""
+    out = np.zeros_like(t)
+    for a in asc[::-1]:
+        out = out * t + a[:, None]
+    return out
+
+
+def _roots_in(asc: np.ndarray, h: np.ndarray) -> np.ndarray:
+    """Real roots inside (0, h) of each piece's polynomial, padded with 0 (an end point anyway)."""
+    pieces, width = asc.shape[1], max(len(asc) - 1, 1)
+    out = np.zeros((pieces, width))
+    nonzero = asc != 0
+    degree = np.where(nonzero.any(axis=0), len(asc) - 1 - np.argmax(nonzero[::-1], axis=0), 0)
+    for g in range(1, len(asc)):
+        idx = np.nonzero(degree == g)[0]
+        if not len(idx):
+            continue
+        coeffs = asc[:g + 1, idx]
+        monic = coeffs[:g] / coeffs[g]
+        companion = np.zeros((len(idx), g, g))
+        if g > 1:
+            companion[:, np.arange(1, g), np.arange(g - 1)] = 1.0
+        companion[:, :, -1] = -monic.T
+        roots = np.linalg.eigvals(companion)
+        real = roots.real
+        ok = (np.abs(roots.imag) <= 1e-9 * (1.0 + np.abs(real))) & (real > 0) & (real < h[idx, None])
+        out[idx, :g] = np.where(ok, real, 0.0)
+    return out
 
 
 @functools.lru_cache(maxsize=128)
-def profile(curve: Curve) -> CurveProfile:
-    """The (cached) evaluated profile of a curve."""
+def _cached_profile(curve: Curve) -> CurveProfile:
     return CurveProfile(curve)
+
+
+_last: tuple[Curve | None, CurveProfile | None] = (None, None)
+
+
+def profile(curve: Curve) -> CurveProfile:
+    """The (cached) evaluated profile of a curve.  The same object asked again skips hashing its fix points
+    (the editor asks several times per redraw of a long curve); one tuple swap keeps this thread-safe."""
+    global _last
+    last = _last
+    if last[0] is curve:
+        return last[1]
+    prof = _cached_profile(curve)
+    _last = (curve, prof)
+    return prof
 
 
 def slave(curve: Curve, master):

@@ -1,0 +1,472 @@
+"""The curve profile diagram [DG L3587-3682, ide-spec 4.20-4.28, 4.58-4.74] with pyqtgraph.
+
+Left axis: slave position (UU); bottom: master (MU); right axis: velocity, acceleration or jerk when exactly one
+of them is shown (each has its own view box so their scales do not squash each other).  Mouse: hover identifies
+a fix point (hand cursor), left-drag on a point moves it, left-drag elsewhere zooms to a rectangle (Ctrl keeps
+the aspect ratio), right-drag pans, right-click opens the popup, double-click adds a point.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pyqtgraph as pg
+from PySide6.QtCore import QPointF, QRectF, Qt, Signal
+
+from motiontool.camcurve.model import LINE, Curve
+from motiontool.camcurve.spline import disengage_path, engage_path, profile
+
+# colours of the manual [DG L3599-3600, L3890-3938]
+RED, GREEN = (210, 30, 30), (0, 150, 0)
+BLUE, DARK_BLUE = (30, 80, 230), (0, 0, 130)
+MAGENTA, DARK_MAGENTA = (220, 0, 220), (120, 0, 120)
+CYAN, GREY, BLUE_GREY = (0, 190, 210), (130, 130, 130), (96, 125, 139)
+YELLOW, PALE_GREEN = (230, 190, 0), (170, 230, 170, 110)
+SAMPLES = 1600  # diagram resolution over one cycle (plus every fix point)
+MARKER_SIZE = 9
+PATH_SAMPLES = 120
+
+
+@dataclass
+class Overlay:
+    """What the window knows beyond the curve: display options and derived marker positions."""
+
+    velocity: bool = False
+    velocity_limit: bool = False
+    acceleration: bool = False
+    acceleration_limit: bool = False
+    jerk: bool = False
+    slave_stop: bool = False
+    start_stop: bool = False
+    engage: bool = False
+    disengage: bool = False
+    master_marker: bool = False
+    slave_marker: bool = False
+    correction: bool = False
+    selected_pair: int | None = None
+    velocity_limit_value: float = 0.0
+    acceleration_limit_value: float = 0.0
+    master_marker_at: float = 0.0
+    master_tolerance: float = 0.0
+    slave_marker_at: float = 0.0
+    slave_tolerance: float = 0.0
+
+
+class CurveViewBox(pg.ViewBox):
+    """The main view box: hit-tests fix points in pixels and turns mouse gestures into editor signals."""
+
+    point_hovered = Signal(int)  # fix point index, -1 = none
+    point_dragged = Signal(int, float, float, bool)  # index, master, slave, finished
+    double_clicked = Signal(float, float)
+    context_requested = Signal(int, float, float, object)  # point index or -1, master, slave, QPoint (screen)
+    user_zoomed = Signal()  # a manual zoom or pan: clears Auto Scale [DG L3614, L3624]
+
+    def __init__(self) -> None:
+        super().__init__(enableMenu=False)
+        self.points = np.zeros((0, 2))
+        self.accuracy = 4
+        self.hovered = -1
+        self._dragging: int | None = None
+        self.setMouseMode(pg.ViewBox.RectMode)
+
+    # -- hit test -------------------------------------------------------------------------------------------------
+    def point_at(self, scene_pos: QPointF) -> int:
+        """Index of the fix point within Mouse accuracy (pixels beyond the marker's edge) of scene_pos, or -1."""
+        if not len(self.points):
+            return -1
+        tr = self.childGroup.sceneTransform()  # view → scene, applied to all points at once
+        px = tr.m11() * self.points[:, 0] + tr.m21() * self.points[:, 1] + tr.dx()
+        py = tr.m12() * self.points[:, 0] + tr.m22() * self.points[:, 1] + tr.dy()
+        d = np.maximum(np.abs(px - scene_pos.x()), np.abs(py - scene_pos.y()))
+        best = int(np.argmin(d))
+        return best if d[best] <= MARKER_SIZE / 2 + self.accuracy else -1
+
+    def _set_hovered(self, index: int) -> None:
+        if index != self.hovered:
+            self.hovered = index
+            if index >= 0:
+                self.setCursor(Qt.CursorShape.PointingHandCursor)
+            else:
+                self.unsetCursor()
+            self.point_hovered.emit(index)
+
+    # -- events ---------------------------------------------------------------------------------------------------
+    def hoverEvent(self, ev) -> None:  # noqa: N802 - pyqtgraph override
+        if self._dragging is not None:
+            return
+        if ev.isExit():
+            self._set_hovered(-1)
+        else:
+            self._set_hovered(self.point_at(ev.scenePos()))
+
+    def mouseDragEvent(self, ev, axis=None) -> None:  # noqa: N802 - pyqtgraph override
+        ev.accept()
+        view = self.mapSceneToView(ev.scenePos())
+        if ev.button() == Qt.MouseButton.LeftButton:
+            if ev.isStart():
+                hit = self.point_at(ev.buttonDownScenePos(Qt.MouseButton.LeftButton))
+                self._dragging = hit if hit >= 0 else None
+            if self._dragging is not None:
+                index = self._dragging
+                if ev.isFinish():
+                    self._dragging = None
+                self.point_dragged.emit(index, view.x(), view.y(), bool(ev.isFinish()))
+                return
+            if ev.isFinish():
+                self.rbScaleBox.hide()
+                rect = QRectF(pg.Point(ev.buttonDownPos(ev.button())), pg.Point(ev.pos())).normalized()
+                rect = self.childGroup.mapRectFromParent(rect)
+                if ev.modifiers() & Qt.KeyboardModifier.ControlModifier:
+                    rect = self._keep_aspect(rect)
+                if rect.width() > 0 and rect.height() > 0:
+                    self.showAxRect(rect)
+                    self.user_zoomed.emit()
+            else:
+                self.updateScaleBox(ev.buttonDownPos(), ev.pos())
+        elif ev.button() == Qt.MouseButton.RightButton:
+            last = self.mapSceneToView(ev.lastScenePos())
+            self.translateBy(x=last.x() - view.x(), y=last.y() - view.y())
+            if ev.isStart():
+                self.user_zoomed.emit()
+
+    def _keep_aspect(self, rect: QRectF) -> QRectF:
+        """Grow the rectangle so that it keeps the current view's aspect ratio (Ctrl held) [DG L3610]."""
+        (x0, x1), (y0, y1) = self.viewRange()
+        ratio = (x1 - x0) / (y1 - y0) if y1 != y0 else 1.0
+        w, h = rect.width(), rect.height()
+        if w / h > ratio:
+            h = w / ratio
+        else:
+            w = h * ratio
+        c = rect.center()
+        return QRectF(c.x() - w / 2, c.y() - h / 2, w, h)
+
+    def mouseClickEvent(self, ev) -> None:  # noqa: N802 - pyqtgraph override
+        view = self.mapSceneToView(ev.scenePos())
+        if ev.button() == Qt.MouseButton.RightButton:
+            ev.accept()
+            self.context_requested.emit(self.point_at(ev.scenePos()), view.x(), view.y(), ev.screenPos().toPoint())
+        elif ev.button() == Qt.MouseButton.LeftButton and ev.double():
+            ev.accept()
+            if self.point_at(ev.scenePos()) < 0:
+                self.double_clicked.emit(view.x(), view.y())
+
+
+class CurveDiagram(pg.PlotWidget):
+    """Draws one curve with its overlays; ``show_curve`` redraws everything, ``move_marker`` only the points."""
+
+    def __init__(self, parent=None) -> None:
+        self.box = CurveViewBox()
+        super().__init__(parent, viewBox=self.box, background="w")
+        plot = self.getPlotItem()
+        plot.showGrid(x=True, y=True, alpha=0.25)
+        plot.setLabel("bottom", "Master", units="MU")
+        plot.setLabel("left", "Slave", units="UU")
+        plot.hideButtons()
+        for name in ("left", "bottom", "right"):
+            axis = plot.getAxis(name)
+            axis.enableAutoSIPrefix(False)
+            axis.setStyle(maxTickLevel=1)  # major and one minor level: a calmer grid, and cheaper to paint
+            axis.setPen(pg.mkPen(60, 60, 60))
+            axis.setTextPen(pg.mkPen(30, 30, 30))
+        self.curve: Curve | None = None
+        self.overlay = Overlay()
+        # secondary view boxes for velocity / acceleration / jerk (right axis) [DG L3811, L3892]
+        self.side: dict[str, pg.ViewBox] = {}
+        for name in ("velocity", "acceleration", "jerk"):
+            vb = pg.ViewBox(enableMenu=False)
+            vb.setMouseEnabled(False, False)
+            vb.setXLink(self.box)
+            plot.scene().addItem(vb)
+            vb.setZValue(-5)
+            self.side[name] = vb
+        plot.getAxis("right").setZValue(1)
+        self.box.sigResized.connect(self._sync_side)
+        # base items
+        self.red = pg.PlotDataItem(pen=pg.mkPen(RED, width=2), connect="finite")
+        self.green = pg.PlotDataItem(pen=pg.mkPen(GREEN, width=2.5), connect="finite")
+        # tangent points green, all others red [DG L3599]; one brush per item keeps 10 000 points fast
+        self.points = pg.ScatterPlotItem(size=MARKER_SIZE, symbol="s", pen=pg.mkPen(20, 20, 20, 200),
+                                         brush=pg.mkBrush(RED))
+        self.t_points = pg.ScatterPlotItem(size=MARKER_SIZE, symbol="s", pen=pg.mkPen(20, 20, 20, 200),
+                                           brush=pg.mkBrush(GREEN))
+        self.hover = pg.ScatterPlotItem(size=MARKER_SIZE + 8, symbol="s", pen=pg.mkPen(0, 0, 0, width=2),
+                                        brush=None)
+        self.slave_stop_line = pg.InfiniteLine(angle=0, movable=False, pen=pg.mkPen(GREY, width=5))
+        self.engage_item = pg.PlotDataItem(pen=pg.mkPen(DARK_BLUE, width=2))
+        self.disengage_item = pg.PlotDataItem(pen=pg.mkPen(DARK_BLUE, width=2, style=Qt.PenStyle.DashLine))
+        self.master_marker_line = pg.InfiniteLine(angle=90, movable=False, pen=pg.mkPen(GREEN, width=2))
+        self.master_band = pg.LinearRegionItem(orientation="vertical", brush=pg.mkBrush(PALE_GREEN), movable=False,
+                                               pen=pg.mkPen(None))
+        self.slave_marker_line = pg.InfiniteLine(angle=0, movable=False, pen=pg.mkPen(GREEN, width=2))
+        self.slave_band = pg.LinearRegionItem(orientation="horizontal", brush=pg.mkBrush(PALE_GREEN), movable=False,
+                                              pen=pg.mkPen(None))
+        self.correction_bars = [pg.LinearRegionItem(orientation="vertical", brush=pg.mkBrush(*BLUE_GREY, 200),
+                                                    movable=False, pen=pg.mkPen(None), span=(0.0, 0.025))
+                                for _ in range(2)]
+        for item in (self.master_band, self.slave_band, *self.correction_bars):
+            item.setZValue(-10)
+        for item in (self.master_band, self.slave_band, *self.correction_bars, self.slave_stop_line,
+                     self.master_marker_line, self.slave_marker_line, self.red, self.green, self.engage_item,
+                     self.disengage_item, self.hover, self.points, self.t_points):
+            plot.addItem(item)
+        self.flags: list[pg.GraphicsObject] = []
+        self.side_items = {"velocity": pg.PlotDataItem(pen=pg.mkPen(BLUE, width=1.5)),
+                           "acceleration": pg.PlotDataItem(pen=pg.mkPen(MAGENTA, width=1.5)),
+                           "jerk": pg.PlotDataItem(pen=pg.mkPen(CYAN, width=1.5))}
+        self.limit_lines = {name: [pg.InfiniteLine(angle=0, movable=False,
+                                                   pen=pg.mkPen(color, width=1.5, style=Qt.PenStyle.DashLine))
+                                   for _ in range(2)]
+                            for name, color in (("velocity", DARK_BLUE), ("acceleration", DARK_MAGENTA))}
+        for name, item in self.side_items.items():
+            self.side[name].addItem(item)
+            for line in self.limit_lines.get(name, []):
+                self.side[name].addItem(line)
+        self.samples_x = np.zeros(0)
+        self.tangent = np.zeros(0, dtype=bool)
+        self.samples_y = np.zeros(0)
+
+    def _sync_side(self) -> None:
+        for vb in self.side.values():
+            vb.setGeometry(self.box.sceneBoundingRect())
+            vb.linkedViewChanged(self.box, vb.XAxis)
+
+    # -- drawing ----------------------------------------------------------------------------------------------------
+    def clear_curve(self) -> None:
+        self.curve = None
+        for item in (self.red, self.green, self.points, self.t_points, self.hover, *self.side_items.values()):
+            item.setData([], [])
+        self.box.points = np.zeros((0, 2))
+        self.tangent = np.zeros(0, dtype=bool)
+        self.getPlotItem().setTitle("")
+        for item in (self.engage_item, self.disengage_item):
+            item.setData([], [])
+        self._show_overlays(None)
+
+    def show_curve(self, curve: Curve, overlay: Overlay) -> None:
+        """Recompute the samples and redraw everything (the editor's "recalc")."""
+        self.curve, self.overlay = curve, overlay
+        prof = profile(curve)
+        xs = np.sort(np.concatenate([np.linspace(0.0, curve.master_length, SAMPLES),
+                                     [p.master for p in curve.fix_points]]))
+        xs = xs[np.concatenate([[True], np.diff(xs) > 0])]  # sorted, without repeats
+        ys = prof.slave(xs, periodic=False)
+        self.samples_x, self.samples_y = xs, ys
+        green, red = self._straight_masks(curve, prof, xs)
+        self.red.setData(xs, np.where(red, ys, np.nan))
+        self.green.setData(xs, np.where(green, ys, np.nan))
+        self.getPlotItem().setTitle(f"<b>{curve.name}</b>", color=(30, 30, 30), size="11pt")
+        self._set_points(curve)
+        shown = [n for n in ("velocity", "acceleration", "jerk") if getattr(overlay, n)]
+        for nu, name in enumerate(("velocity", "acceleration", "jerk"), start=1):
+            item = self.side_items[name]
+            if name in shown:
+                item.setData(xs, prof._eval(xs, nu, False))
+            else:
+                item.setData([], [])
+        self._show_overlays(curve)
+        self._right_axis(shown)
+
+    def _straight_masks(self, curve: Curve, prof, xs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Samples drawn green (straight segments: built as tangent sections, or happening to be straight
+        [DG L3600]) and red; a sample on a joint belongs to both neighbours so the colours meet."""
+        xp = np.array([p.master for p in curve.fix_points])
+        yp = np.array([p.slave for p in curve.fix_points])
+        seg = np.clip(np.searchsorted(xp, xs, side="right") - 1, 0, len(xp) - 2)
+        acc = np.abs(prof.acceleration(xs, periodic=False))
+        peak = np.zeros(len(xp) - 1)
+        np.maximum.at(peak, seg, acc)
+        at_point = _members(xs, xp)
+        np.maximum.at(peak, np.clip(seg - 1, 0, None)[at_point], acc[at_point])
+        flat = peak * np.diff(xp) ** 2 <= 1e-7 * np.maximum(1.0, np.abs(np.diff(yp)))
+        straight = flat | (np.array(prof.kinds) == LINE)
+        joint = at_point & (xs > xp[0]) & (xs < xp[-1])
+        before = np.clip(seg - 1, 0, None)
+        green = straight[seg] | (joint & straight[before])
+        red = ~straight[seg] | (joint & ~straight[before])
+        return green, red
+
+    def _set_points(self, curve: Curve) -> None:
+        pts = np.array([[p.master, p.slave] for p in curve.fix_points], dtype=float)
+        tangent = np.array([p.type == "T" for p in curve.fix_points])
+        self._place_points(pts, tangent)
+        self.set_hover(self.box.hovered)
+
+    def _place_points(self, pts: np.ndarray, tangent: np.ndarray) -> None:
+        """Draw the fix points; a drag moves one point, which is updated in place (10 000 points stay fast)."""
+        old, old_tangent = self.box.points, self.tangent
+        self.box.points, self.tangent = pts, tangent
+        if old.shape == pts.shape and np.array_equal(old_tangent, tangent):
+            moved = np.nonzero((old != pts).any(axis=1))[0]
+            if len(moved) == 0:
+                return
+            if len(moved) == 1:
+                j = int(moved[0])
+                item = self.t_points if tangent[j] else self.points
+                k = int(np.count_nonzero(tangent[:j] == tangent[j]))
+                item.data["x"][k], item.data["y"][k] = pts[j]
+                item.bounds = [None, None]
+                item.prepareGeometryChange()
+                item.informViewBoundsChanged()
+                item.invalidate()
+                return
+        self.points.setData(pts[~tangent, 0], pts[~tangent, 1])
+        self.t_points.setData(pts[tangent, 0], pts[tangent, 1])
+
+    def move_marker(self, index: int, master: float, slave: float) -> None:
+        """Only the dragged point moves (Continuous Recalc off)."""
+        pts = self.box.points.copy()
+        if 0 <= index < len(pts):
+            pts[index] = (master, slave)
+            self._place_points(pts, self.tangent)
+            self.set_hover(index)
+
+    def set_hover(self, index: int) -> None:
+        pts = self.box.points
+        if 0 <= index < len(pts):
+            self.hover.setData([pts[index, 0]], [pts[index, 1]])
+        else:
+            self.hover.setData([], [])
+
+    def _right_axis(self, shown: list[str]) -> None:
+        """The right axis belongs to velocity, acceleration or jerk when exactly one is shown [DG L3892]."""
+        plot = self.getPlotItem()
+        if len(shown) == 1:
+            name = shown[0]
+            units = {"velocity": "UU/MU", "acceleration": "UU/MU²", "jerk": "UU/MU³"}[name]
+            plot.showAxis("right")
+            axis = plot.getAxis("right")
+            axis.linkToView(self.side[name])
+            axis.setLabel(name.capitalize(), units=units)
+        else:
+            plot.hideAxis("right")
+        for name, vb in self.side.items():
+            vb.setVisible(name in shown or (name == "velocity" and self.overlay.velocity_limit)
+                          or (name == "acceleration" and self.overlay.acceleration_limit))
+        self.fit_side()
+        self._sync_side()
+
+    def fit_side(self) -> None:
+        """Scale each right-axis quantity to its curve and its limit lines."""
+        ov = self.overlay
+        for name, vb in self.side.items():
+            data = self.side_items[name].yData
+            values = list(data[np.isfinite(data)]) if data is not None and len(data) else []
+            limit = {"velocity": ov.velocity_limit_value if ov.velocity_limit else None,
+                     "acceleration": ov.acceleration_limit_value if ov.acceleration_limit else None}.get(name)
+            if limit:
+                values += [limit, -limit]
+            if values:
+                lo, hi = min(values), max(values)
+                span = hi - lo or max(abs(hi), 1e-9)
+                vb.setYRange(lo - 0.08 * span, hi + 0.08 * span, padding=0)
+
+    def _show_overlays(self, curve: Curve | None) -> None:
+        ov = self.overlay
+        on = curve is not None
+        self.slave_stop_line.setVisible(on and ov.slave_stop)
+        if on:
+            self.slave_stop_line.setValue(curve.slave_stop_position)
+        for name, limit, value in (("velocity", ov.velocity_limit, ov.velocity_limit_value),
+                                   ("acceleration", ov.acceleration_limit, ov.acceleration_limit_value)):
+            for sign, line in zip((1, -1), self.limit_lines[name], strict=True):
+                line.setVisible(on and limit)
+                line.setValue(sign * value)
+        self.master_marker_line.setVisible(on and ov.master_marker)
+        self.master_band.setVisible(on and ov.master_marker and ov.master_tolerance > 0)
+        self.master_marker_line.setValue(ov.master_marker_at)
+        m, tol = ov.master_marker_at, ov.master_tolerance
+        self.master_band.setRegion((m - tol, m + tol))
+        self.slave_marker_line.setVisible(on and ov.slave_marker)
+        self.slave_band.setVisible(on and ov.slave_marker and ov.slave_tolerance > 0)
+        self.slave_marker_line.setValue(ov.slave_marker_at)
+        self.slave_band.setRegion((ov.slave_marker_at - ov.slave_tolerance, ov.slave_marker_at + ov.slave_tolerance))
+        for bar in self.correction_bars:
+            bar.setVisible(False)
+        if on and ov.correction:
+            for bar, region in zip(self.correction_bars, correction_regions(curve), strict=False):
+                bar.setRegion(region)
+                bar.setVisible(True)
+        self._show_flags(curve)
+        self._show_paths(curve)
+
+    def _show_flags(self, curve: Curve | None) -> None:
+        """Start-Stop: "a" with a yellow arrow at Start, "b" with a red arrow at Stop; the selected pair's flags
+        are red [DG L4030]."""
+        plot = self.getPlotItem()
+        for item in self.flags:
+            plot.removeItem(item)
+        self.flags = []
+        if curve is None or not self.overlay.start_stop:
+            return
+        prof = profile(curve)
+        for k, pair in enumerate(curve.start_stop_pairs):
+            if k == 0 and pair.start == pair.stop == 0:
+                continue  # the hidden pair 0 has no flags
+            selected = k == self.overlay.selected_pair
+            flag = pg.mkBrush(RED if selected else YELLOW)
+            for label, x, arrow in (("a", pair.start, YELLOW), ("b", pair.stop, RED)):
+                y = float(prof.slave(x, periodic=False))
+                head = pg.ArrowItem(pos=(x, y), angle=-90, headLen=14, tipAngle=40, brush=pg.mkBrush(arrow),
+                                    pen=pg.mkPen(60, 60, 60))
+                text = pg.TextItem(f"{label}{k}", color=(0, 0, 0), fill=flag, border=pg.mkPen(80, 80, 80),
+                                   anchor=(0.5, 1.9))
+                text.setPos(x, y)
+                for item in (head, text):
+                    plot.addItem(item)
+                    self.flags.append(item)
+
+    def _show_paths(self, curve: Curve | None) -> None:
+        ov = self.overlay
+        k = ov.selected_pair
+        usable = curve is not None and k is not None and 0 <= k < len(curve.start_stop_pairs)
+        for item, shown, fn in ((self.engage_item, ov.engage, engage_path), (self.disengage_item, ov.disengage,
+                                                                               disengage_path)):
+            if usable and shown:
+                xs, ys = fn(curve, k, points=PATH_SAMPLES)  # smooth on screen; the array keeps its grid
+                item.setData(xs, ys)
+            else:
+                item.setData([], [])
+
+    # -- view ---------------------------------------------------------------------------------------------------
+    def zoom_reset(self) -> None:
+        """Fit the whole curve (and what is shown with it) [DG L3569]."""
+        if self.curve is None:
+            return
+        ys = list(self.samples_y)
+        ov = self.overlay
+        if ov.slave_stop:
+            ys.append(self.curve.slave_stop_position)
+        for shown, xs_ys in ((ov.engage or ov.disengage, (self.engage_item.yData, self.disengage_item.yData)),):
+            if shown:
+                for data in xs_ys:
+                    if data is not None:
+                        ys += list(data)
+        if ov.slave_marker:
+            ys += [ov.slave_marker_at - ov.slave_tolerance, ov.slave_marker_at + ov.slave_tolerance]
+        lo, hi = float(np.min(ys)), float(np.max(ys))
+        span = hi - lo or 1.0
+        self.box.setRange(xRange=(0, self.curve.master_length), yRange=(lo - 0.06 * span, hi + 0.1 * span),
+                          padding=0.02)
+        self.fit_side()
+
+    def zoom(self, factor: float) -> None:
+        """Zoom In (0.5) keeps the central part; Zoom Out (2) [DG L3570-3571]."""
+        self.box.scaleBy((factor, factor))
+
+
+def _members(values: np.ndarray, sorted_set: np.ndarray) -> np.ndarray:
+    """values that occur in sorted_set (np.isin without its hashing, for sorted data)."""
+    idx = np.clip(np.searchsorted(sorted_set, values), 0, len(sorted_set) - 1)
+    return sorted_set[idx] == values
+
+
+def correction_regions(curve: Curve) -> list[tuple[float, float]]:
+    """The correction bar: Start → End, wrapping round the cycle end when Start > End [DG L1539-1541]."""
+    a, b = curve.correction_start, curve.correction_end
+    if a == b:
+        return []
+    if a < b:
+        return [(a, b)]
+    return [(a, curve.master_length), (0, b)]

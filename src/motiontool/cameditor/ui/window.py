@@ -1,0 +1,457 @@
+"""The CAM-Editor window [DG L3540-3583, ide-spec 4.4-4.19, 4.78]: toolbar, curve profile diagram, index cards,
+display options and the two tables in four resizable panes.  Every edit goes through cameditor.editing; a
+refused edit leaves the curve as it was and shows the model's reason in the message line."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+
+from PySide6.QtCore import Qt
+from PySide6.QtGui import QAction, QKeySequence
+from PySide6.QtWidgets import (
+    QComboBox,
+    QFileDialog,
+    QLabel,
+    QLineEdit,
+    QMainWindow,
+    QMessageBox,
+    QSplitter,
+    QStyle,
+    QTabWidget,
+    QVBoxLayout,
+    QWidget,
+)
+
+from motiontool.camcurve.layout import element_count
+from motiontool.camcurve.model import Curve, CurveError
+from motiontool.cameditor import editing
+from motiontool.cameditor.dat import DatError, read_dat, write_dat
+from motiontool.cameditor.history import History
+from motiontool.cameditor.transfer import download_config, upload_config
+from motiontool.cameditor.ui.cards import (
+    CurveDataCard,
+    CurveInfoCard,
+    DisplayOptions,
+    encoder_card,
+    sync_marker_card,
+    synchronization_card,
+)
+from motiontool.cameditor.ui.diagram import CurveDiagram
+from motiontool.cameditor.ui.edits import EditsMixin
+from motiontool.cameditor.ui.tables import FixPointTable, StartStopTable
+from motiontool.cameditor.zbc import EXTENSIONS, ArrayEntry, ConfigError, ConfigFile, read_config, write_config
+from motiontool.comms.link import Link
+from motiontool.comms.protocol import LinkError
+
+FILE_FILTER = "CAM configuration (*.zbc *.cnf);;All files (*)"
+
+
+class Slot:
+    """One controller array in the editor (DIM order); curve arrays carry their curve and own undo list."""
+
+    def __init__(self, name: str, values: list[int], curve: Curve | None = None) -> None:
+        self.name = name
+        self.values = values
+        self.curve = curve
+        self.history = History()
+
+    def label(self, number: int) -> str:
+        return f"{number} {self.curve.name if self.curve else 'Array'}"  # "Array" for non-curves [DG L3563]
+
+
+class CamEditor(EditsMixin, QMainWindow):
+    def __init__(self, link_provider: Callable[[], Link | None] | None = None, parent=None) -> None:
+        super().__init__(parent)
+        self.link_provider = link_provider or (lambda: None)
+        self.confirm = True  # ask before discarding changes / overwriting a controller (tests switch it off)
+        self.parameters: dict[str, int | float] = {}
+        self.slots: list[Slot] = []
+        self.current = -1
+        self.path: Path | None = None
+        self.modified = False
+        self.dialog = None  # the open non-blocking dialog, if any
+        self.context_menu = None
+        self._drag_start: Curve | None = None
+        self.resize(1400, 900)
+        self._build_panes()
+        self._build_toolbar()
+        self._connect()
+        self.refresh()
+
+    # -- layout --------------------------------------------------------------------------------------------------
+    def _build_panes(self) -> None:
+        self.diagram = CurveDiagram()
+        self.curve_data = CurveDataCard()
+        self.curve_info = CurveInfoCard()
+        self.sync_card = synchronization_card()
+        self.marker_card = sync_marker_card()
+        self.encoder_card = encoder_card()
+        self.cards = QTabWidget()
+        for card, title in ((self.curve_data, "Curve Data"), (self.curve_info, "Curve Info"),
+                            (self.sync_card, "Synchronization"), (self.marker_card, "Sync. Marker"),
+                            (self.encoder_card, "Encoder Data")):
+            self.cards.addTab(card, title)
+        self.options = DisplayOptions()
+        self.fix_table = FixPointTable()
+        self.pair_table = StartStopTable()
+        self.top = QSplitter(Qt.Orientation.Horizontal)
+        self.top.addWidget(self.diagram)
+        self.top.addWidget(self.cards)
+        self.bottom = QSplitter(Qt.Orientation.Horizontal)
+        for w in (self.options, self.fix_table, self.pair_table):
+            self.bottom.addWidget(w)
+        self.main_split = QSplitter(Qt.Orientation.Vertical)
+        self.main_split.addWidget(self.top)
+        self.main_split.addWidget(self.bottom)
+        self.message_line = QLabel()
+        self.message_line.setWordWrap(True)
+        self.message_line.hide()
+        central = QWidget()
+        layout = QVBoxLayout(central)
+        layout.setContentsMargins(4, 2, 4, 4)
+        layout.addWidget(self.message_line)
+        layout.addWidget(self.main_split)
+        self.setCentralWidget(central)
+        self.reset_splitters()
+
+    def reset_splitters(self) -> None:
+        """Default pane sizes [DG L3553, L3572]."""
+        self.main_split.setSizes([640, 260])
+        self.top.setSizes([930, 470])
+        self.bottom.setSizes([420, 560, 420])
+
+    def _action(self, text: str, slot, icon=None, shortcut=None, tip: str = "") -> QAction:
+        action = QAction(text, self)
+        if icon is not None:
+            action.setIcon(self.style().standardIcon(icon))
+        if shortcut:
+            action.setShortcut(QKeySequence(shortcut))
+        action.setToolTip(tip or text)
+        action.triggered.connect(lambda _checked=False: slot())
+        return action
+
+    def _build_toolbar(self) -> None:
+        sp = QStyle.StandardPixmap
+        self.actions_by_name = {
+            "new": self._action("New", self.new_file, sp.SP_FileIcon, "Ctrl+N"),
+            "open": self._action("Open", self.open_dialog, sp.SP_DialogOpenButton, "Ctrl+O"),
+            "save": self._action("Save", self.save, sp.SP_DialogSaveButton, "Ctrl+S"),
+            "save_as": self._action("Save As", self.save_as_dialog),
+            "zoom_reset": self._action("Zoom Reset", self.zoom_reset, tip="Show the whole curve"),
+            "zoom_in": self._action("Zoom +", lambda: self.zoom(0.5), tip="Zoom In ×2 (central part)"),
+            "zoom_out": self._action("Zoom −", lambda: self.zoom(2.0), tip="Zoom Out ×2"),
+            "reset_splitters": self._action("Splitters", self.reset_splitters, tip="Reset splitters"),
+            "undo": self._action("Undo", self.undo, sp.SP_ArrowBack, "Ctrl+Z"),
+            "redo": self._action("Redo", self.redo, sp.SP_ArrowForward, "Ctrl+Y"),
+            "snap_all": self._action("Snap all", self.snap_all, tip="Snap all Fix points and Start Stop points on "
+                                                                    "the interpolation grid"),
+            "read": self._action("Read", self.read_from_controller, sp.SP_ArrowDown,
+                                 tip="Read from controller: replaces all parameters and arrays"),
+            "write": self._action("Write", self.write_to_controller, sp.SP_ArrowUp,
+                                  tip="Write to controller: parameters and arrays"),
+            "import": self._action("Import", self.import_dialog, tip="Import a .dat curve (replaces the selected "
+                                                                     "curve)"),
+            "export": self._action("Export", self.export_dialog, tip="Export the selected curve as .dat"),
+            "add": self._action("Add CAM array", self.add_array_dialog),
+            "delete": self._action("Delete array", self.delete_array, sp.SP_TrashIcon),
+        }
+        bar = self.addToolBar("CAM-Editor")
+        bar.setObjectName("cam_toolbar")
+        bar.setToolButtonStyle(Qt.ToolButtonStyle.ToolButtonIconOnly)  # text where there is no icon
+        self.array_combo = QComboBox()
+        self.array_combo.setMinimumContentsLength(18)
+        self.length_field = QLineEdit()
+        self.length_field.setReadOnly(True)
+        self.length_field.setMaximumWidth(60)
+        self.length_field.setToolTip("Minimum array length: the DIM size the program needs")
+        groups = (("new", "open", "save", "save_as"), None, ("zoom_reset", "zoom_in", "zoom_out", "reset_splitters"),
+                  ("undo", "redo", "snap_all"), ("read", "write", "import", "export"), ("add", "delete"))
+        for group in groups:
+            if group is None:
+                bar.addWidget(QLabel(" Array: "))
+                bar.addWidget(self.array_combo)
+                bar.addWidget(QLabel(" Length: "))
+                bar.addWidget(self.length_field)
+            else:
+                for name in group:
+                    bar.addAction(self.actions_by_name[name])
+            bar.addSeparator()
+
+    def _connect(self) -> None:
+        self.array_combo.activated.connect(self.select_array)
+        box = self.diagram.box
+        box.point_hovered.connect(self._hovered)
+        box.point_dragged.connect(self._dragged)
+        box.double_clicked.connect(self._double_clicked)
+        box.context_requested.connect(self._context_menu)
+        box.user_zoomed.connect(lambda: self.options.boxes["auto_scale"].setChecked(False))
+        self.options.changed.connect(self._options_changed)
+        self.fix_table.model.edit_requested.connect(self._fix_point_edited, Qt.ConnectionType.QueuedConnection)
+        self.fix_table.view.delete_requested.connect(lambda row: self.edit("Delete point", editing.delete_point, row))
+        self.fix_table.add_clicked.connect(self.add_points_dialog)
+        self.pair_table.add_clicked.connect(self.add_pairs_dialog)
+        self.pair_table.edit_requested.connect(self.edit_pair_dialog)
+        self.pair_table.view.delete_requested.connect(lambda row: self.edit("Delete pair", editing.delete_pair,
+                                                                             row + 1))
+        self.pair_table.pair_selected.connect(lambda _k: self._redraw())
+        self.curve_data.field_edited.connect(self._curve_field_edited)
+        self.curve_data.set_length_clicked.connect(self.set_length_dialog)
+        self.curve_data.set_gradients_clicked.connect(self.set_gradients_dialog)
+        self.curve_info.cycles_edited.connect(lambda text: self._curve_field_edited("cycles_per_min", text))
+        for card in (self.sync_card, self.marker_card, self.encoder_card):
+            card.parameter_edited.connect(self._parameter_edited)
+
+    # -- state -----------------------------------------------------------------------------------------------------
+    def slot(self) -> Slot | None:
+        return self.slots[self.current] if 0 <= self.current < len(self.slots) else None
+
+    def curve(self) -> Curve | None:
+        slot = self.slot()
+        return slot.curve if slot else None
+
+    def message(self, text: str, error: bool = True) -> None:
+        """The message line: a refused edit's reason (red) or a notice; nothing the user had is lost."""
+        self.message_line.setText(text)
+        self.message_line.setStyleSheet("background: #ffe4e4; color: #a00000; padding: 3px" if error
+                                        else "background: #fff6d5; color: #5a4500; padding: 3px")
+        self.message_line.setVisible(bool(text))
+        if text:
+            self.statusBar().showMessage(text, 8000)
+
+    def title(self) -> str:
+        """The curve name, its array number and element count (the DIM size) [DG L1467, ide-spec 4.10]."""
+        name = self.path.name if self.path else "Untitled"
+        text = f"CAM-Editor - {name}{' *' if self.modified else ''}"
+        curve = self.curve()
+        if curve is not None:
+            text += f" - {curve.name} [array {self.current}, {element_count(curve)} elements]"
+        return text
+
+    def refresh(self, zoom: bool = False) -> None:
+        """Show the current slot everywhere."""
+        self.array_combo.clear()
+        for number, slot in enumerate(self.slots):
+            self.array_combo.addItem(slot.label(number))
+        self.array_combo.setCurrentIndex(self.current)
+        curve = self.curve()
+        slot = self.slot()
+        self.length_field.setText(str(element_count(curve)) if curve else (str(len(slot.values)) if slot else ""))
+        for card in (self.curve_data, self.curve_info):
+            card.setEnabled(curve is not None)
+        for w in (self.fix_table, self.pair_table):
+            w.setEnabled(curve is not None)
+        self.fix_table.model.set_curve(curve)
+        self.pair_table.set_curve(curve)
+        if curve is not None:
+            self.curve_data.show_curve(curve)
+        for card in (self.sync_card, self.marker_card, self.encoder_card):
+            card.show_parameters(self.parameters)
+        for name in ("export", "import", "snap_all"):
+            self.actions_by_name[name].setEnabled(curve is not None)
+        self.actions_by_name["delete"].setEnabled(slot is not None)
+        self._redraw(zoom)
+
+    def _update_undo(self) -> None:
+        slot = self.slot()
+        history = slot.history if slot and slot.curve else None
+        for name, can, label in (("undo", history and history.can_undo, history and history.undo_label()),
+                                 ("redo", history and history.can_redo, history and history.redo_label())):
+            action = self.actions_by_name[name]
+            action.setEnabled(bool(can))  # greyed when there is nothing to undo [DG L3575]
+            action.setToolTip(f"{action.text()} {label}" if label else action.text())
+
+    # -- arrays ------------------------------------------------------------------------------------------------------
+    def select_array(self, index: int) -> None:
+        self.current = index
+        self.message("")
+        self.refresh(zoom=True)
+
+    def add_array_dialog(self) -> None:
+        from motiontool.cameditor.ui.dialogs import AddCurveDialog
+
+        taken = {s.curve.name for s in self.slots if s.curve}
+        name = next(f"curve{n}" for n in range(1, 1000) if f"curve{n}" not in taken)
+        dialog = AddCurveDialog(self, name)
+        dialog.accepted.connect(lambda: self.add_array(dialog.name.text(), dialog.master_length.value(),
+                                                       dialog.intervals.value(), dialog.interpolation.isChecked()))
+        self._open(dialog)
+
+    def add_array(self, name: str, master_length: float, intervals: int, interpolation: bool) -> bool:
+        """Append a curve array after the last array and select it [DG L3582]."""
+        if any(s.curve and s.curve.name == name or s.name == name for s in self.slots):
+            self.message(f"Add CAM array: an array named {name!r} exists already")
+            return False
+        try:
+            curve = editing.new_curve(name, master_length, intervals, interpolation)
+        except CurveError as exc:
+            self.message(f"Add CAM array: {exc}")
+            return False
+        self.slots.append(Slot(name, [], curve))
+        self.current = len(self.slots) - 1
+        self._set_modified()
+        self.refresh(zoom=True)
+        return True
+
+    def delete_array(self) -> None:
+        if self.slot() is None:
+            return
+        del self.slots[self.current]
+        self.current = min(self.current, len(self.slots) - 1)
+        self._set_modified()
+        self.refresh(zoom=True)
+
+    # -- files -----------------------------------------------------------------------------------------------------
+    def _discard_ok(self) -> bool:
+        if not self.modified or not self.confirm:
+            return True
+        answer = QMessageBox.question(self, "CAM-Editor", "Discard the changes?")
+        return answer == QMessageBox.StandardButton.Yes
+
+    def _set_modified(self, modified: bool = True) -> None:
+        self.modified = modified
+        self.setWindowTitle(self.title())
+
+    def load_config(self, config: ConfigFile, path: Path | None) -> None:
+        self.parameters = dict(config.parameters)
+        self.slots = []
+        for entry in config.arrays:
+            curve = config.curve(entry.curve) if entry.curve else None
+            self.slots.append(Slot(entry.name, list(entry.values), curve))
+        self.current = next((i for i, s in enumerate(self.slots) if s.curve), 0 if self.slots else -1)
+        self.path = path
+        self._set_modified(False)
+        self.message("")
+        self.refresh(zoom=True)
+
+    def new_file(self) -> None:
+        """File → New / Create empty file: no curves [ide-spec 4.6]."""
+        if self._discard_ok():
+            self.load_config(ConfigFile(), None)
+
+    def open_dialog(self) -> None:
+        if not self._discard_ok():
+            return
+        path, _ = QFileDialog.getOpenFileName(self, "Open CAM configuration", "", FILE_FILTER)
+        if path:
+            self.open_file(Path(path))
+
+    def open_file(self, path: Path) -> bool:
+        try:
+            config = read_config(path)
+        except ConfigError as exc:
+            self.message(f"Cannot open: {exc}")
+            return False
+        self.load_config(config, Path(path))
+        return True
+
+    def config(self) -> ConfigFile:
+        """The editor's contents as a configuration; raises CurveError naming a curve the array cannot hold."""
+        config = ConfigFile(parameters=dict(self.parameters))
+        for slot in self.slots:
+            if slot.curve is None:
+                config.arrays.append(ArrayEntry(slot.name, list(slot.values)))
+                continue
+            try:
+                config.add_curve(slot.curve)
+            except CurveError as exc:
+                raise CurveError(exc.field, f"curve {slot.curve.name}: {exc.message}", exc.point) from None
+        return config
+
+    def save(self) -> bool:
+        return self.save_file(self.path) if self.path else self.save_as_dialog()
+
+    def save_as_dialog(self) -> bool:
+        path, _ = QFileDialog.getSaveFileName(self, "Save CAM configuration", str(self.path or ""), FILE_FILTER)
+        return self.save_file(Path(path)) if path else False
+
+    def save_file(self, path: Path) -> bool:
+        """Save atomically as .zbc or .cnf [DG L3483-3485]; nothing is written when a curve cannot be stored."""
+        path = Path(path)
+        if path.suffix.lower() not in EXTENSIONS:
+            path = path.with_suffix(".zbc")
+        try:
+            write_config(path, self.config())
+        except (CurveError, ConfigError, OSError) as exc:
+            self.message(f"Not saved: {exc}")
+            return False
+        self.path = path
+        self._set_modified(False)
+        self.message(f"Saved {path.name}", error=False)
+        return True
+
+    def read_from_controller(self) -> bool:
+        """Replace all parameters and arrays by the controller's [DG L3579]."""
+        link = self.link_provider()
+        if link is None:
+            self.message("Read from controller: no controller is connected (Settings → Interface)")
+            return False
+        if not self._discard_ok():
+            return False
+        try:
+            config = upload_config(link)
+        except (LinkError, ConfigError) as exc:
+            self.message(f"Read from controller failed: {exc}")
+            return False
+        self.load_config(config, self.path)
+        self._set_modified(True)
+        return True
+
+    def write_to_controller(self) -> bool:
+        """Download parameters and arrays; they overwrite the controller's [ide-spec 4.3, DG L3487]."""
+        link = self.link_provider()
+        if link is None:
+            self.message("Write to controller: no controller is connected (Settings → Interface)")
+            return False
+        if self.confirm:
+            answer = QMessageBox.question(self, "CAM-Editor", "Write all parameters and arrays of this file to the "
+                                          "controller? Its own parameters and arrays are overwritten.")
+            if answer != QMessageBox.StandardButton.Yes:
+                return False
+        try:
+            download_config(link, self.config())
+        except (CurveError, ConfigError, LinkError) as exc:
+            self.message(f"Write to controller failed: {exc}")
+            return False
+        self.message("Parameters and arrays written to the controller", error=False)
+        return True
+
+    def import_dialog(self) -> None:
+        path, _ = QFileDialog.getOpenFileName(self, "Import curve", "", "CAM export (*.dat);;All files (*)")
+        if path:
+            self.import_dat(Path(path))
+
+    def import_dat(self, path: Path) -> bool:
+        """Replace the selected curve by an exported one; anything else is refused [DG L3580]."""
+        if self.curve() is None:
+            self.message("Import: select a curve first")
+            return False
+        try:
+            curve = read_dat(path).to_curve()
+        except (DatError, OSError) as exc:
+            self.message(f"Import refused: {path.name}: {exc}")
+            return False
+        return self.set_curve(curve, "Import")
+
+    def export_dialog(self) -> None:
+        curve = self.curve()
+        if curve is None:
+            return
+        path, _ = QFileDialog.getSaveFileName(self, "Export curve", f"{curve.name}.dat", "CAM export (*.dat)")
+        if path:
+            self.export_dat(Path(path))
+
+    def export_dat(self, path: Path) -> bool:
+        try:
+            write_dat(path, self.curve())
+        except (CurveError, OSError) as exc:
+            self.message(f"Export failed: {exc}")
+            return False
+        self.message(f"Exported {Path(path).name}", error=False)
+        return True
+
+    def closeEvent(self, event) -> None:  # noqa: N802 - Qt override
+        if self._discard_ok():
+            event.accept()
+        else:
+            event.ignore()
