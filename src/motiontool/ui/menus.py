@@ -72,8 +72,8 @@ def build_menus(w) -> None:
             None, ("Error &History...", None, lambda: _error_history(w)),
             ("&Diagnostic Report...", None, lambda: cm.diagnostic_report(w)),
         ]),
-        ("&Tools", [("&CAM-Editor", None, None), ("&Array Editor", None, lambda: _array_editor(w)),
-                    ("&Oscilloscope", None, None)]),
+        ("&Tools", [("&CAM-Editor", None, lambda: _cam_editor(w)), ("&Array Editor", None, lambda: _array_editor(w)),
+                    ("&Oscilloscope", None, lambda: _scope(w))]),
         ("&Settings", [
             ("&Editor...", None, lambda: _editor_settings(w)), ("&Compiler...", None, None),
             ("Open last file", None, "open_last"),
@@ -176,6 +176,18 @@ def _command_list(w) -> None:
     dialog.execute_requested.connect(w.development.execute_line)
     w.command_list = dialog
     dialog.show()
+
+
+def _cam_editor(w) -> None:
+    from motiontool.cameditor.ui import open_cam_editor
+
+    open_cam_editor(w)
+
+
+def _scope(w) -> None:
+    from motiontool.scope.ui import open_scope
+
+    w._scopes = [s for s in getattr(w, "_scopes", []) if s.isVisible()] + [open_scope(w)]
 
 
 def _array_editor(w) -> None:
