@@ -30,6 +30,17 @@ Z_WIDTH_QC = 1          # the index pulse is 1 qc wide, so both flanks latch wit
 MAX_SEARCH_QC = 1 << 22  # a jump of the counter (SYSVAR 4105 write) is not searched for markers
 
 
+def _boundary_in(lo: float, hi: float, base: float, period: float) -> bool:
+    """Whether some base + k·period lies in (lo, hi]. The division only picks the candidates — it rounds
+    (an edge a denormal above lo gives -0.0) — the comparison with the boundary itself decides."""
+    k = math.floor((lo - base) / period)
+    for j in (k - 1, k, k + 1, k + 2):
+        b = base + j * period
+        if b > lo:
+            return b <= hi
+    return False
+
+
 @dataclass(frozen=True)
 class MarkerSensor:
     """A sensor that is on while the position is inside [c_k, c_k + width): c_k = offset + k · period
@@ -57,8 +68,9 @@ class MarkerSensor:
         if self.positions:
             return [c for c in self.positions if c - self.width <= hi and c >= lo - self.width]
         reach = self.width + self.jitter
-        first = math.floor((lo - self.offset - reach) / self.period)
-        last = math.ceil((hi - self.offset + self.jitter) / self.period)
+        # one period of margin each side: the divisions round, the exact comparison in edges() decides
+        first = math.floor((lo - self.offset - reach) / self.period) - 1
+        last = math.ceil((hi - self.offset + self.jitter) / self.period) + 1
         return [self._start(k) for k in range(first, last + 1)]
 
     def edges(self, p0: float, p1: float) -> list[tuple[float, bool]]:
@@ -68,8 +80,7 @@ class MarkerSensor:
         lo, hi = (p0, p1) if p1 > p0 else (p1, p0)
         if not self.positions and not self.jitter:  # fast path: no boundary offset + k·period (+ width) passed
             period, start, end = self.period, self.offset, self.offset + self.width
-            if (math.floor((hi - start) / period) == math.floor((lo - start) / period)
-                    and math.floor((hi - end) / period) == math.floor((lo - end) / period)):
+            if not _boundary_in(lo, hi, start, period) and not _boundary_in(lo, hi, end, period):
                 return []
         up = p1 > p0
         found = []
