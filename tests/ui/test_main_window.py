@@ -148,3 +148,21 @@ def test_run_in_several_controllers_and_break_all(window, qtbot):
     window.development.break_all()
     assert {links[1].status().program_state, links[2].status().program_state} == {"break"}
     assert "[01] go" in window.messages.toPlainText()
+
+
+def test_outline_lists_subprograms_and_jumps_or_says_it_is_empty(window, qtbot):
+    """The outline pane lists the program's subprograms (DG 6086: SUBPROG name … RETURN); a click on one moves
+    the caret there. A program without any says so instead of showing a blank pane."""
+    editor = window.open_sample("07_heartbeat.m")
+    window.live_check()
+    items = [window.outline.item(i) for i in range(window.outline.count())]
+    names = [item.text() for item in items]
+    assert "subprog: beat  (46)" in names and "subprog: stop_beat  (52)" in names
+    window.outline.itemClicked.emit(items[names.index("subprog: stop_beat  (52)")])
+    assert editor.caret_line_col()[0] == 52
+    window.open_sample("01_positioning.m")
+    window.live_check()
+    assert window.outline.count() == 1
+    hint = window.outline.item(0)
+    assert hint.text().startswith("No labels") and not hint.flags() & Qt.ItemFlag.ItemIsEnabled
+    window.outline.itemClicked.emit(hint)  # nothing to jump to: no error

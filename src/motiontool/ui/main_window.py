@@ -294,10 +294,14 @@ class MainWindow(QMainWindow):
             entry = QListWidgetItem(f"{item.kind}: {item.name}  ({item.line})")
             entry.setData(Qt.ItemDataRole.UserRole, item.line)
             self.outline.addItem(entry)
+        if not self.outline.count():  # say why the pane is empty rather than show a blank panel
+            hint = QListWidgetItem("No labels, subprograms\nor functions")
+            hint.setFlags(Qt.ItemFlag.NoItemFlags)
+            self.outline.addItem(hint)
 
     def _outline_jump(self, item: QListWidgetItem) -> None:
         editor = self.current_editor()
-        if editor is not None:
+        if editor is not None and item.data(Qt.ItemDataRole.UserRole) is not None:
             editor.goto_line(int(item.data(Qt.ItemDataRole.UserRole)))
             editor.setFocus()
 
