@@ -2,6 +2,7 @@
 
 import pytest
 
+from motiontool.cameditor.transfer import SETS
 from motiontool.cameditor.zbc import read_config
 from motiontool.ui import controller_menu as cm
 
@@ -40,7 +41,7 @@ def test_restore_refuses_a_broken_file_and_leaves_the_controller_alone(window, t
     assert cm.save_parameters(window, path)
     path.write_text(path.read_text().replace("32-60 KPROP = 30", "32-60 KPROP = 30x"))
     window.bridge.link.write_parameter("KPROP", 44)
-    assert not cm.restore_parameters(window, path, controller_id=1, sets=cm.SETS)
+    assert not cm.restore_parameters(window, path, controller_id=1, sets=SETS)
     assert window.bridge.link.read_parameter("KPROP") == 44
     assert f"{path}:" in window.messages.toPlainText() and "30x" in window.messages.toPlainText()
 

@@ -22,8 +22,6 @@ from PySide6.QtWidgets import (
     QVBoxLayout,
 )
 
-from motiontool.cameditor.transfer import SETS, download_config, upload_config
-from motiontool.cameditor.zbc import ConfigError, read_config, write_config
 from motiontool.comms.protocol import LinkError
 from motiontool.ui.controllers import SIMULATED_IDS
 
@@ -34,6 +32,15 @@ RESET_ENTRIES = (("Parameter", "parameters", "global and axis parameters go back
                  ("User Parameters", "user", "the user parameters 19-xx go back to their defaults"),
                  ("Complete", "all", "parameters, arrays and stored programs: an immediate factory reset"))
 PROGRAM_NUMBERS = range(0, 91)  # DG 2627-2639: up to 91 programs, numbers 0-90
+
+
+def _config_io():
+    """The .zbc reader/writer and the transfer, imported on first use: they pull in the curve maths (scipy),
+    which would add about a second to the IDE's start."""
+    from motiontool.cameditor import transfer, zbc
+
+    return transfer, zbc
+
 
 
 def _link(w, controller_id: int | None = None):
@@ -53,9 +60,10 @@ def save_parameters(w, path: Path | None = None) -> bool:
         if not chosen:
             return False
         path = Path(chosen)
+    transfer, zbc = _config_io()
     try:
-        write_config(path, upload_config(link))
-    except (LinkError, ConfigError, OSError) as exc:
+        zbc.write_config(path, transfer.upload_config(link))
+    except (LinkError, zbc.ConfigError, OSError) as exc:
         w.messages.ide(f"Save to file: {exc}")
         return False
     w.messages.ide(f"Controller {w.bridge.controller_id}: configuration saved to {path}")
@@ -72,7 +80,7 @@ class RestoreDialog(QDialog):
         for cid in SIMULATED_IDS:
             self.controller.addItem(f"Controller {cid}: simulated MCO 305", cid)
         self.controller.setCurrentIndex(max(0, self.controller.findData(controller_id)))
-        self.checks = {name: QCheckBox(SET_LABELS[name]) for name in SETS}
+        self.checks = {name: QCheckBox(SET_LABELS[name]) for name in _config_io()[0].SETS}
         form = QFormLayout(self)
         form.addRow("Load into", self.controller)
         for check in self.checks.values():
@@ -99,9 +107,10 @@ def restore_parameters(w, path: Path | None = None, controller_id: int | None = 
         if not chosen:
             return False
         path = Path(chosen)
+    transfer, zbc = _config_io()
     try:
-        config = read_config(path)
-    except ConfigError as exc:  # the file is refused with its line; the controller is untouched
+        config = zbc.read_config(path)
+    except zbc.ConfigError as exc:  # the file is refused with its line; the controller is untouched
         w.messages.ide(f"Restore from file: {exc}")
         return False
     if controller_id is None or sets is None:
@@ -110,8 +119,8 @@ def restore_parameters(w, path: Path | None = None, controller_id: int | None = 
             return False
         controller_id, sets = dialog.controller_id(), dialog.sets()
     try:
-        download_config(w.controllers.link(controller_id), config, sets)
-    except (LinkError, ConfigError, ValueError) as exc:
+        transfer.download_config(w.controllers.link(controller_id), config, sets)
+    except (LinkError, zbc.ConfigError, ValueError) as exc:
         w.messages.ide(f"Restore from file: controller {controller_id}: {exc}")
         return False
     w.messages.ide(f"Controller {controller_id}: restored {', '.join(sets) or 'nothing'} from {path}")
@@ -287,7 +296,7 @@ def diagnostic_report_text(link, controller_id: int) -> str:
                 lines.append(f"{p.label} = {link.read_parameter(p.number)}")
             except LinkError as exc:
                 lines.append(f"{p.label} = ? ({exc})")
-    lines += ["", "[configuration]", config_text(upload_config(link))]
+    lines += ["", "[configuration]", config_text(_config_io()[0].upload_config(link))]
     return "\n".join(lines) + "\n"
 
 
@@ -302,9 +311,10 @@ def diagnostic_report(w, path: Path | None = None) -> bool:
         path = Path(chosen)
     from motiontool.fileio import atomic_write_text
 
+    zbc = _config_io()[1]
     try:
         atomic_write_text(path, diagnostic_report_text(link, w.bridge.controller_id))
-    except (LinkError, ConfigError, OSError) as exc:
+    except (LinkError, zbc.ConfigError, OSError) as exc:
         w.messages.ide(f"Diagnostic Report: {exc}")
         return False
     w.messages.ide(f"Controller {w.bridge.controller_id}: diagnostic report written to {path}")
