@@ -104,13 +104,21 @@ def tokenize(text: str, file: str, line: int = 1, col: int = 1,
             raise CompileError(f"unexpected character '{ch}'{detail}", loc_at(pos))
         kind = m.lastgroup
         start, end = m.start(), m.end()
-        if kind == "ws":
+        if kind == "ident":
+            word = m.group()
+            append(Token(IDENT, word, word.upper(), Location(file, line, start - line_start + 1)))
+            at_line_start = False
+        elif kind == "op":
+            word = m.group()
+            append(Token(OP, word, word, Location(file, line, start - line_start + 1)))
+            at_line_start = False
+        elif kind == "ws":
             splices = m.group().count("\n")
             if splices:
                 line += splices
                 line_start = m.group().rfind("\n") + start + 1
         elif kind == "nl":
-            append(Token(NEWLINE, "\n", None, loc_at(start)))
+            append(Token(NEWLINE, "\n", None, Location(file, line, start - line_start + 1)))
             line += 1
             line_start = end
             at_line_start = True
@@ -134,13 +142,6 @@ def tokenize(text: str, file: str, line: int = 1, col: int = 1,
                 line_start = text.rfind("\n", start, close) + 1
                 at_line_start = False
             end = close + 2
-        elif kind == "ident":
-            word = m.group()
-            append(Token(IDENT, word, word.upper(), loc_at(start)))
-            at_line_start = False
-        elif kind == "op":
-            append(Token(OP, m.group(), m.group(), loc_at(start)))
-            at_line_start = False
         elif kind == "terminal":  # OUT X59/3 1: a connector pin (CR 3152-3155)
             append(Token(TERMINAL, m.group(), m.group().upper(), loc_at(start)))
             at_line_start = False
