@@ -30,8 +30,9 @@ SETTINGS = {"SYNCFACTM": 2048, "SYNCFACTS": 55, "POSFACT_Z": 25, "POSFACT_N": 9,
 PLANT = PlantConfig(home_switch_qc=2000)
 
 
-def run_example(name: str, curve, settings=None, inputs=None):
-    link = EmbeddedLink(PLANT, master=MasterConfig())  # the conveyor stands still until the test starts it
+def run_example(name: str, curve, settings=None, inputs=None, master=None, plant=None):
+    # the conveyor stands still until the test starts it; `master` can carry its photoelectric beam (input 5)
+    link = EmbeddedLink(plant or PLANT, master=master or MasterConfig())
     link.call("restore_arrays", arrays=[{"name": curve.name, "values": encode(curve)}])
     run = start((EXAMPLES / name).read_text(), settings={**SETTINGS, **(settings or {})}, inputs=inputs, link=link)
     ctl = run.controller
@@ -110,8 +111,12 @@ def test_printing_with_marker_engages_with_pair_1_and_disengages_with_pair_2_to_
     SYNCCSTART 1 "Engage roller with start point pair 1", WAITI 4 ON, SYNCCSTOP 2 0 "stop at position 0 degrees".
     Engaging forward runs from Start to Stop (DG 4040-4046): the roller stands until the curve master passes 1000
     and is on the curve at 1500; disengaging leaves the curve at 2500 and stands at 0° (mod 360°) at 3000.
-    (The marker correction of SYNCCMM is not simulated here.)"""
-    run = run_example("marker.m", marker_curve(), settings={"SYNCMPULSM": 2375, "SYNCMWINM": 200, "SYNCMTYPM": 2})
+    The photoelectric beam sees a box every 4000 MU; "SET SYNCMSTART 2000 // Counting of the master pulse does
+    not begin until the next edge comes from the sensor" (DG 1558-1560) — the marker correction itself is
+    tested in tests/kernel/test_cam_markers.py."""
+    boxes = MasterConfig(marker_period_qc=4000 * QC_PER_MU, marker_offset_qc=20000)
+    run = run_example("marker.m", marker_curve(), settings={"SYNCMPULSM": 2375, "SYNCMWINM": 200, "SYNCMTYPM": 2},
+                      master=boxes)
     ctl = run.controller
     f = profile(marker_curve())
     assert ctl.read_pseudo(0, 4230) == 4000 - 1375                          # DEFMCPOS (1000 - 2375)

@@ -14,7 +14,8 @@ Curve master position (CMASTERCPOS, SYSVAR 4230, MU): M = p + (MAPOS + ΣMOVESYN
 SYNCFACTM with (p, a) the last DEFMCPOS relation (default (0, 0)): 1 MU = SYNCFACTM/SYNCFACTS master qc (DG
 1390-1431). It is computed from MAPOS, so DEFMORIGIN changes it too (CR 687). The in-cycle value is M mod
 MasterCycleLen. The slave follows T = C + F(M), F(M) = f(M mod L) + ⌊M/L⌋ · SlaveCycleLen, where C (the
-"csstart" of CR 913-925) places the curve into the slave's current cycle when SYNCC starts.
+"csstart" of CR 913-925) places the curve into the slave's current cycle when SYNCC starts. SYNCCMM corrections
+and the SYNCMSTART 2000 start add a shift to M; SYNCCMS corrections move C (kernel/cam_markers.py).
 
 Engage/disengage use the start/stop pairs and the path shapes stored in the array (layout: normalised weight
 w(u) × 100000): engaging forward from the slave's position P0 at Start: y = P0 + w(u)·(T − P0), u = (M − Start)/span;
@@ -156,12 +157,19 @@ class CamState:
         self.slave_base_qc: float | None = None  # C of the last SYNCC (qc); None: CURVEPOS = f(M mod L)
         self.qc_per_uu = 1.0
         self.temp_origin = 0
+        self.mu_shift = 0.0  # SYNCCMM corrections and the SYNCMSTART 2000 start (MU, kernel/cam_markers.py)
 
     def master_position(self) -> float:
         """Unwrapped curve master position M (MU)."""
         data = self.data
         p, a = data.mc_ref
-        return p + (self.master.mapos + data.sync_shift - a) * self.facts / self.factm
+        return p + (self.master.mapos + data.sync_shift - a) * self.facts / self.factm + self.mu_shift
+
+    def master_position_at(self, mapos: int) -> float:
+        """M when MAPOS was `mapos` (a latched master marker), with the corrections made so far."""
+        data = self.data
+        p, a = data.mc_ref
+        return p + (mapos + data.sync_shift - a) * self.facts / self.factm + self.mu_shift
 
     def cmastercpos(self) -> int:
         length = self.curve.length
@@ -208,6 +216,7 @@ class CamMotion:
     """One running SYNCC (axis mode "cam"); stepped by the axis every tick like SyncMotion."""
 
     kind = "cam"
+    markers = None  # cam_markers.CamMarkers: SYNCCMM/SYNCCMS marker correction, SYNCMSTART 2000 start
 
     def __init__(self, cam: CamState, cycles: int, limits, accuracy: int, slave_qc: float, temp_origin: int,
                  qc_per_uu: float, sync_origin: tuple[int, int] | None = None):
@@ -226,6 +235,7 @@ class CamMotion:
             data = cam.data
             data.mc_ref = (mcpos, cam.master.mapos + data.sync_shift)
             data.mc_defined = True
+            cam.mu_shift = 0.0
         m = cam.master_position()
         length, sl = curve.length, curve.slave_length
         cycle = math.floor(m / length)
@@ -319,6 +329,8 @@ class CamMotion:
 
     def step(self, pg) -> None:
         self.ticks += 1
+        if self.markers is not None:  # marker corrections inside the correction window (kernel/cam_markers.py)
+            self.markers.realise()
         cam = self.cam
         m = cam.master_position()
         curve = cam.curve
@@ -433,11 +445,13 @@ class CamMotion:
             if self.pending_cam is not None:
                 new = self.pending_cam
                 new.qc_per_uu, new.temp_origin = self.cam.qc_per_uu, self.cam.temp_origin
+                new.mu_shift = self.cam.mu_shift  # CMASTERCPOS is not changed by SETCURVE in SYNCC (CR 3936)
                 self.cam, self.pending_cam = new, None
             if self.pending_mcpos is not None:
                 data = self.cam.data
                 into = m - cycle * self.cam.curve.length
                 data.mc_ref = (self.pending_mcpos + into, self.cam.master.mapos + data.sync_shift)
+                self.cam.mu_shift = 0.0
                 self.pending_mcpos = None
             m = self.cam.master_position()
             self.base += before - self._curve_qc(m)
@@ -446,6 +460,8 @@ class CamMotion:
             self._last_m = m
         if forward and self.state in (CURVE, CATCHUP, ENGAGE):  # cycles run on the curve count (SYNCC n)
             self.cycles_done += 1
+        if self.markers is not None:  # marker distances and numbers are taken over at the restart (CR 3936)
+            self.markers.read_parameters()
         return m
 
     def _check_cycles(self) -> None:
@@ -516,7 +532,10 @@ class CamMotion:
         return self.target - apos
 
     def status(self, apos: int) -> int:
-        bits = SYNCSTAT_READY if self.state == CURVE else 0
+        markers = self.markers
+        bits = SYNCSTAT_READY if self.state == CURVE and (markers is None or markers.ready) else 0
+        if markers is not None:
+            bits |= markers.fault_bit()
         if self.state in (CURVE, CATCHUP, ENGAGE) and abs(self.target - apos) <= abs(self.accuracy):
             bits |= SYNCSTAT_ACCURACY
         return bits

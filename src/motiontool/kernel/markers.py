@@ -186,7 +186,7 @@ class Markers:
             self._slave_period = max(1, axis.index_period())
         master = self.master.tick(m0, m1, values[3319], 4 * max(1, values[3231]), ctl.io)  # 32-31 lines → qc
         slave = self.slave.tick(s0, s1, values[3320], self._slave_period, ctl.io)
-        marker_sync = axis.sync.markers if axis.mode == "sync" else None
+        marker_sync = axis.sync.markers if axis.mode == "sync" or axis.mode == "cam" else None  # SYNCM / SYNCCM*
         if not master and not slave:
             self.master_events = self.slave_events = _NONE
             if marker_sync is None:

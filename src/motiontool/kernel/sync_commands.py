@@ -6,6 +6,7 @@ kernel/sync.py, kernel/markers.py, kernel/master.py and kernel/cam.py.
 from __future__ import annotations
 
 from motiontool.kernel.cam import CamMotion, CamState, active_cam, decode_curve_array
+from motiontool.kernel.cam_markers import CamMarkers
 from motiontool.kernel.commands import COMMANDS, _limits, _motion_allowed, _position, command
 from motiontool.kernel.errors import ControllerError
 from motiontool.kernel.markers import MarkerSync
@@ -164,10 +165,14 @@ def defmcpos(ctl, vm, args):
     data = ctl.program_data
     data.mc_ref = (args[0], ctl.master.mapos + data.sync_shift)
     data.mc_defined = True
+    if data.cam is not None:
+        data.cam.mu_shift = 0.0  # p is the curve master position now, without earlier marker corrections
 
 
-def _syncc(ctl, vm, args):
-    """SYNCC n / SYNCCMM n / SYNCCMS n: CAM mode for n curve cycles, 0 = until stopped (DG 7261-7263)."""
+def _syncc(ctl, vm, args, side: str | None = None):
+    """SYNCC n / SYNCCMM n / SYNCCMS n: CAM mode for n curve cycles, 0 = until stopped (DG 7261-7263); SYNCCMM and
+    SYNCCMS correct with master / slave markers, SYNCMSTART 2000 starts the count at a master marker
+    (kernel/cam_markers.py)."""
     _motion_allowed(ctl)
     motion = _cam_motion(ctl)
     if motion is not None:  # already in CAM mode: a new cycle count from now
@@ -179,10 +184,25 @@ def _syncc(ctl, vm, args):
     axis = ctl.axis
     motion = CamMotion(cam, args[0], _limits(ctl), ctl.params["SYNCACCURACY"], axis.cpos, ctl.temp_origin,
                        axis.scaling.posfact_z / axis.scaling.posfact_n, origin)
+    start_mode = ctl.params["SYNCMSTART"]
+    if side is not None or start_mode == 2000:
+        motion.markers = CamMarkers(ctl, motion, side, start_mode)
     axis.synchronise(motion, "cam")
 
 
-COMMANDS["SYNCC"] = COMMANDS["SYNCCMM"] = COMMANDS["SYNCCMS"] = _syncc  # marker correction: not yet simulated
+COMMANDS["SYNCC"] = _syncc
+
+
+@command("SYNCCMM")
+def synccmm(ctl, vm, args):
+    """DG 1493-1566: CAM mode with master marker correction (the curve master position is corrected)."""
+    return _syncc(ctl, vm, args, "master")
+
+
+@command("SYNCCMS")
+def synccms(ctl, vm, args):
+    """DG 1608-1746: CAM mode with slave marker correction (the slave position is corrected)."""
+    return _syncc(ctl, vm, args, "slave")
 
 
 @command("SYNCCSTART")
