@@ -3,7 +3,11 @@
 - scope_stream_drops: samples missing between consecutive packets (goal 0),
 - scope_stream_latency_p95 / _max: how far the newest drawn sample is behind the controller clock when a
   frame is painted (goal < 100 ms),
-- scope_stream_rss_growth: resident memory growth over the run.
+- scope_stream_rss_growth: resident memory growth over the run,
+- and, to tell design from load on a shared machine: scope_stream_data_age_p95 (how old the newest sample is
+  when a frame starts: packets, queue, relay), scope_stream_frame_cpu_p95 (the GUI thread's CPU time for a
+  frame) and scope_stream_frame_wall_p95 (the same frame on the wall clock: CPU plus waiting for a core and
+  for the GIL held by the 4 kernel threads).
 `--seconds N` (default 60) sets the duration."""
 
 import argparse
@@ -75,14 +79,21 @@ def main() -> None:
     started = time.monotonic()
     window.list.rebuild()
     window.chart.live = True
-    latencies = []
+    latencies, ages, frame_cpu, frame_wall = [], [], [], []
     rss0 = rss_mb()
 
     def frame():
+        cpu0, wall0 = time.thread_time(), time.monotonic()
+        for k, link in enumerate(links):
+            newest = scope.curve(f"{k + 1}: APOS").raw()[0]
+            if newest.size:
+                ages.append(link.service.controller.time_ms - newest[-1])
         window._tick()
         window.chart.grab()   # what changes in a frame: the chart and (every 4th frame) the list
         window.list.viewport().grab()
         now = time.monotonic()
+        frame_cpu.append((time.thread_time() - cpu0) * 1000)
+        frame_wall.append((now - wall0) * 1000)
         for k, link in enumerate(links):
             newest = scope.curve(f"{k + 1}: APOS").raw()[0]
             if newest.size:
@@ -105,6 +116,8 @@ def main() -> None:
     print(f"scope_stream_latency_p95: {np.percentile(lat, 95):.0f} ms")
     print(f"scope_stream_latency_max: {lat.max():.0f} ms")
     print(f"scope_stream_rss_growth: {rss_mb() - rss0:.1f} MB")
+    for name, values in (("data_age", ages[80:]), ("frame_cpu", frame_cpu[20:]), ("frame_wall", frame_wall[20:])):
+        print(f"scope_stream_{name}_p95: {np.percentile(np.array(values or [0.0]), 95):.0f} ms")
 
 
 if __name__ == "__main__":

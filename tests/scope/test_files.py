@@ -70,7 +70,7 @@ def test_large_regular_data_is_compact(tmp_path):
 
 
 @pytest.mark.parametrize("edit, message", [
-    (lambda d: d.update(version=2), "newer than this motiontool reads"),
+    (lambda d: d.update(version=zbo.VERSION + 1), "newer than this motiontool reads"),
     (lambda d: d.update(format="x"), "not an oscilloscope file"),
     (lambda d: d.update(variant="bogus"), "variant: 'bogus'"),
     (lambda d: d["curves"][1]["axis"].update(min_height="big"), r"curves\[1\].axis.min_height: expected float"),

@@ -18,6 +18,7 @@ import numpy as np
 from motiontool.comms.link import Link
 from motiontool.comms.protocol import LinkEvent
 from motiontool.scope.curves import Curve, Group, Scope, Source, signal_label
+from motiontool.scope.select import apply, canonical, parse_selection, split_signal, with_suffix
 from motiontool.scope.trigger import Capture, Trigger
 
 SYS_CLOCK = "4119"          # SYSVAR sys_clock (docs/sysvar.md): a poll reads it to time-stamp its values
@@ -35,9 +36,14 @@ def polling_load(curves: int, poll_ms: float, bitrate: int) -> float:
 
 
 def new_curve(scope: Scope, signal: str, group: str, method: str, axis: int = 1, name: str | None = None,
-              unit: str = "") -> Curve:
-    curve = Curve(name or signal_label(signal, axis), Source(method=method, signal=str(signal), group=group),
-                  unit=unit or default_unit(signal))
+              unit: str = "", select: str | None = None) -> Curve:
+    """A curve of a link signal. A byte/word/bit selection comes from `select` or an APOSS suffix typed after
+    the signal ("4104.b2", "APOS.3"); the default name then ends in it: "1: SYSVAR [4104].b2"."""
+    signal, suffix = split_signal(str(signal))
+    select = canonical(select) if select is not None else suffix
+    curve = Curve(name or with_suffix(signal_label(signal, axis), select),
+                  Source(method=method, signal=signal, group=group, select=select),
+                  unit=unit or ("" if select else default_unit(signal)))
     return scope.add_curve(curve)
 
 
@@ -64,6 +70,7 @@ class FreeRun:
         self._subscribed = subscribe
         self._signals: list[str] = []
         self._curves: list[Curve] = []
+        self._selections: list = []     # per column: a select.Selection or None
         # Triggered capture (beyond the manual): (curve name, Trigger); single = stop after one capture,
         # else re-arm and show the newest capture, like a scope's "normal" mode.
         self.trigger: tuple[str, Trigger] | None = None
@@ -84,6 +91,7 @@ class FreeRun:
                 c.buffer.clear()
         self._curves = curves   # fixed for the run: columns of the stream
         self._signals = [c.source.signal for c in curves]
+        self._selections = [parse_selection(c.source.select) for c in curves]
         self.capture = None
         if self.trigger is not None:
             name, trig = self.trigger
@@ -115,6 +123,11 @@ class FreeRun:
             return
         t = np.asarray(data["time_ms"], dtype=float)
         v = np.asarray(data["values"], dtype=float).reshape(t.size, len(self._signals))
+        if any(self._selections):   # byte/word/bit curves: select before the trigger sees the values
+            v = v.copy()
+            for j, sel in enumerate(self._selections):
+                if sel is not None:
+                    v[:, j] = sel.apply(v[:, j])
         self.received += 1
         self.last_event_time = time.monotonic()
         if self.capture is not None:
@@ -180,7 +193,7 @@ class Polling:
         self.request_seconds += time.perf_counter() - began
         now = float(values[-1])
         for c, v in zip(signals + variables, values[:-1], strict=True):
-            c.buffer.append(now, float(v))
+            c.buffer.append(now, float(v) if c.source.select is None else float(apply(c.source.select, [v])[0]))
         self.polls += 1
 
 
@@ -222,7 +235,7 @@ class SingleShot:
         t = np.asarray(data["time_ms"], dtype=float)
         v = np.asarray(data["samples"], dtype=float).reshape(t.size, len(data["signals"]))
         for c, j in zip(self.curves(), range(v.shape[1]), strict=False):
-            c.buffer.extend(t, v[:, j])
+            c.buffer.extend(t, apply(c.source.select, v[:, j]))
             c.source.info = {"recording": data["name"], "interval_ms": data["interval_ms"],
                              "start_ms": data["start_ms"]}
         return int(t.size)

@@ -1,9 +1,10 @@
 """The oscilloscope's document: curves, groups and settings (ide-spec 6d, 6e, 6g). No Qt.
 
 A curve is named "Axis: Name [Index]" (DG 5343-5345) when it comes from a SYSVAR index, e.g.
-"1: REG_ACTPOS [4097]". Its samples live in a RingBuffer (the FIFO "max number of samples", DG 5995-6001);
-display properties (scaling, range validation, smoothing) change what is shown, never the stored data
-(DG 5125-5161).
+"1: REG_ACTPOS [4097]"; a curve that records one byte, word or bit of the value adds the APOSS suffix,
+"1: REG_STAT [4104].b2" (scope/select.py). Its samples live in a RingBuffer (the FIFO "max number of
+samples", DG 5995-6001); display properties (scaling, range validation, smoothing) change what is shown, never
+the stored data (DG 5125-5161). A selection is part of the source: it decides what is stored.
 """
 
 from __future__ import annotations
@@ -78,6 +79,7 @@ class Source:
     controller: int | None = 1
     interface: str = ""
     bit_mask: int | None = None
+    select: str | None = None   # byte/word/bit of the 32-bit value: "b2", "sw1", "3" … (scope/select.py)
     derived: dict | None = None  # derived.DerivedSpec as a dict
     info: dict = field(default_factory=dict)  # e.g. the recording, test parameters of an old testrun
 
@@ -245,6 +247,26 @@ class Scope:
         else:
             self.curves.append(curve)
         return curve
+
+    def rename_curve(self, old: str, new: str) -> str:
+        """Rename a curve (made unique) and every reference to it: shared axes and derived curves' inputs."""
+        curve = self.curve(old)
+        if new == old:
+            return old
+        curve.name = ""
+        new = self.unique_name(new)
+        curve.name = new
+        for c in self.curves:
+            if c.axis.share == old:
+                c.axis.share = new
+            spec = c.source.derived
+            if spec:
+                for key in ("base", "second"):
+                    if spec.get(key) == old:
+                        spec[key] = new
+                if isinstance(spec.get("variables"), dict):
+                    spec["variables"] = {k: new if v == old else v for k, v in spec["variables"].items()}
+        return new
 
     def remove_curve(self, name: str) -> None:
         self.curves.remove(self.curve(name))

@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from motiontool.fileio import atomic_write_text
+from motiontool.scope import select
 from motiontool.scope.buffer import RingBuffer
 from motiontool.scope.curves import (
     FORMATS,
@@ -31,12 +32,13 @@ from motiontool.scope.curves import (
 )
 
 MAGIC = "motiontool oscilloscope"
-VERSION = 1
+VERSION = 2                 # the newest version read and written; 2 added source.select (docs/formats/zbo.md)
+SELECT_VERSION = 2          # a file is written as version 1 unless a curve has a byte/word/bit selection
 ENCODING = "f8le-zlib-base64"
 MAX_SAMPLES = 100_000_000   # per curve: refuse absurd counts before allocating
 
 
-OPTIONAL = {"controller": int, "share": str, "bit_mask": int}   # fields that may be null
+OPTIONAL = {"controller": int, "share": str, "bit_mask": int, "select": str}   # fields that may be null
 
 
 class ZboError(ValueError):
@@ -59,15 +61,23 @@ def decode_array(text: object, count: int, where: str) -> np.ndarray:
     return np.frombuffer(raw, dtype="<f8").astype(float)
 
 
+def _source_dict(source: Source) -> dict:
+    d = asdict(source)
+    if d["select"] is None:     # absent in version 1: a file without selections stays readable by 1-readers
+        del d["select"]
+    return d
+
+
 def scope_to_dict(scope: Scope, with_data: bool = True) -> dict:
     curves = []
+    version = SELECT_VERSION if any(c.source.select for c in scope.curves) else 1
     for c in scope.curves:
         entry = {
             "name": c.name, "colour": c.colour, "unit": c.unit, "visible": c.visible, "active": c.active,
             "format": c.fmt, "interpolation": c.interpolation,
             "scaling": asdict(c.scaling) if c.scaling is not None else None,
             "range": [c.range_low, c.range_high], "smoothing": c.smoothing, "axis": asdict(c.axis),
-            "first_of_set": c.first_of_set, "source": asdict(c.source), "capacity": c.buffer.capacity,
+            "first_of_set": c.first_of_set, "source": _source_dict(c.source), "capacity": c.buffer.capacity,
             "data": None,
         }
         if with_data:
@@ -75,7 +85,7 @@ def scope_to_dict(scope: Scope, with_data: bool = True) -> dict:
             entry["data"] = {"encoding": ENCODING, "count": int(t.size), "time_ms": encode_array(t),
                              "values": encode_array(y)}
         curves.append(entry)
-    return {"format": MAGIC, "version": VERSION, "variant": scope.variant, "settings": asdict(scope.settings),
+    return {"format": MAGIC, "version": version, "variant": scope.variant, "settings": asdict(scope.settings),
             "cursors": list(scope.cursors), "pauses": list(scope.pauses),
             "groups": [asdict(g) for g in scope.groups], "curves": curves}
 
@@ -117,6 +127,7 @@ def loads(text: str, name: str = "<zbo>") -> Scope:
         raise ZboError(f"{name}: version: expected a positive integer")
     if version > VERSION:
         raise ZboError(f"{name}: format version {version} is newer than this motiontool reads ({VERSION})")
+    r.version = version
     variant = r.choice(obj, "variant", VARIANTS, "")
     scope = Scope(variant)
     scope.settings = r.dataclass(Settings, obj.get("settings", {}), "settings")
@@ -146,6 +157,7 @@ def loads(text: str, name: str = "<zbo>") -> Scope:
 class _Reader:
     def __init__(self, name: str):
         self.name = name
+        self.version = VERSION
 
     def fail(self, where: str, message: str):
         raise ZboError(f"{self.name}: {where}: {message}" if where else f"{self.name}: {message}")
@@ -237,6 +249,13 @@ class _Reader:
                                   f"{where}.source")
         if c.source.method not in METHODS:
             self.fail(f"{where}.source.method", f"'{c.source.method}' is not one of {', '.join(METHODS)}")
+        if "select" in source:
+            if self.version < SELECT_VERSION:
+                self.fail(f"{where}.source.select", f"needs format version {SELECT_VERSION} (file says {self.version})")
+            try:
+                c.source.select = select.canonical(c.source.select)
+            except ValueError as exc:
+                self.fail(f"{where}.source.select", str(exc))
         c.source.info = self.dict(info, f"{where}.source.info")
         c.source.derived = None if derived is None else self.dict(derived, f"{where}.source.derived")
         capacity = obj.get("capacity", 10_000)

@@ -27,14 +27,23 @@ class ScaledAxis(pg.AxisItem):
     def __init__(self, orientation: str):
         self._norm = (0.0, 1.0)
         self.mapping = (0.0, 1.0)  # set before the base class calls setRange
+        self._look = None          # (label, colour, show values) last applied
         super().__init__(orientation)
 
-    def set_mapping(self, low: float, high: float, label: str = "", colour: str | None = None) -> None:
-        self.mapping = (low, high)
-        self.setLabel(label, color=colour) if label else self.setLabel("")
-        if colour:
-            self.setTextPen(pg.mkPen(colour))
-        self.setRange(*self._norm)
+    def set_mapping(self, low: float, high: float, label: str = "", colour: str | None = None,
+                    show_values: bool = True) -> None:
+        """Called on every live frame: only what changed is applied, since a new label, pen or style makes
+        pyqtgraph lay the axis out again (profiled: most of a live frame's axis cost, benchmarks/scope_stream)."""
+        look = (label, colour, show_values)
+        if look != self._look:
+            self._look = look
+            self.setLabel(label, color=colour) if label else self.setLabel("")
+            if colour:
+                self.setTextPen(pg.mkPen(colour))
+            self.setStyle(showValues=show_values)
+        if (low, high) != self.mapping:
+            self.mapping = (low, high)
+            self.setRange(*self._norm)
 
     def setRange(self, mn: float, mx: float):  # noqa: N802 - pyqtgraph override
         self._norm = (mn, mx)
@@ -80,6 +89,9 @@ class Chart(QWidget):
         self.left_axis.setWidth(AXIS_WIDTH)
         self.right_axis.setWidth(AXIS_WIDTH)
         self.plot.showGrid(x=True, y=True, alpha=0.25)
+        # horizontal grid lines follow the left axis only: the right axis has other ticks (another curve's
+        # scale), and its second set of lines cost ~1/6 of a live frame (benchmarks/scope_stream.py)
+        self.right_axis.setGrid(False)
         # grid lines at major ticks only: the minor grid costs more than all curves together (benchmark)
         for axis in (self.left_axis, self.right_axis, bottom):
             axis.setStyle(maxTickLevel=0)
@@ -235,9 +247,8 @@ class Chart(QWidget):
                 curve = self.scope.curve(name) if name else None
             except KeyError:
                 curve = None
-            axis.setStyle(showValues=curve is not None)  # no owner: no numbers that mean nothing
-            if curve is None:
-                axis.set_mapping(0.0, 1.0, "")
+            if curve is None:  # no owner: no numbers that mean nothing
+                axis.set_mapping(0.0, 1.0, "", show_values=False)
             else:
                 lo, hi = self.range_of(curve)
                 axis.set_mapping(lo, hi, f"{curve.name} [{curve.unit}]" if curve.unit else curve.name, curve.colour)

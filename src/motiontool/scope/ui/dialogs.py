@@ -29,6 +29,7 @@ from PySide6.QtWidgets import (
 
 from motiontool.scope.curves import FORMATS, INTERPOLATIONS, Curve, Group, Scaling
 from motiontool.scope.derived import KINDS
+from motiontool.scope.select import CHOICES, canonical
 from motiontool.scope.trigger import Trigger
 from motiontool.scope.tune import PID_PARAMETERS, TestConfiguration, TuneResult
 
@@ -99,7 +100,8 @@ class AddCurveDialog(QDialog):
         form.addRow("Type:", self.kind)
         self.signal = QLineEdit("APOS")
         self.signal.setToolTip("APOS, CPOS, TRACKERR, AVEL …, a parameter (KPROP, 32-60), a SYSVAR index (4097, "
-                               "0x01250001) or, for Variable, a program variable (name or array[i])")
+                               "0x01250001) or, for Variable, a program variable (name or array[i]); an APOSS "
+                               "suffix records one byte, word or bit of it: 4104.b2, 4104.sw1, 4104.3")
         form.addRow("Signal / variable:", self.signal)
         self.method = QComboBox()
         self.method.addItems(groups + ["Polled (no group)"])
@@ -190,6 +192,10 @@ class TunePanel(QWidget):
             self.results.setItem(row, col, QTableWidgetItem(text))
 
 
+WHOLE_VALUE = "(whole value)"
+SELECTABLE = ("free_run", "single_shot", "polled", "variable")   # methods whose samples a selection applies to
+
+
 class PropertiesDialog(QDialog):
     """Curve properties (DG 5070-5236): Display (colour, format, interpolation, scaling, range validation,
     smoothing, unit), Axis (min height, automatic / user range, centre zero, zero mark, share) and Source."""
@@ -276,6 +282,16 @@ class PropertiesDialog(QDialog):
                              ("Controller", "" if s.controller is None else str(s.controller)),
                              ("Max number of samples", str(curve.buffer.capacity))):
             form.addRow(label + ":", QLabel(value))
+        self.old_select = s.select
+        self.select = QComboBox()
+        self.select.setEditable(True)
+        self.select.addItems([WHOLE_VALUE] + CHOICES)
+        self.select.setCurrentText(s.select or WHOLE_VALUE)
+        self.select.setEnabled(s.method in SELECTABLE)
+        self.select.setToolTip("Byte (b1…b4, sb1…sb4 signed), word (w1, w2, sw1, sw2) or bit (1…32) of the 32-bit "
+                               "value, like the APOSS suffixes; 1 = least significant. Changing it deletes the "
+                               "curve's recorded data, which holds the old selection.")
+        form.addRow("Byte/bit selection:", self.select)
         for key, value in s.info.items():
             form.addRow(f"{key}:", QLabel(str(value)))
         tabs.addTab(source, "Source")
@@ -297,6 +313,13 @@ class PropertiesDialog(QDialog):
         except ValueError:
             QMessageBox.warning(self, "Properties", "Range validation bounds must be numbers or blank")
             return
+        try:
+            text = self.select.currentText()
+            select = None if text == WHOLE_VALUE else canonical(text)
+        except ValueError as exc:
+            QMessageBox.warning(self, "Properties", str(exc))
+            return
+        c.source.select = select
         if QColor(self.colour.text()).isValid():
             c.colour = QColor(self.colour.text()).name()
         c.fmt = self.fmt.currentText()

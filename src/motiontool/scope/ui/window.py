@@ -2,7 +2,8 @@
 
 It talks to the controller only through a comms Link: given a LinkBridge (the IDE's) it uses the bridge's
 link and its queued `samples` signal; given a plain Link it relays the link's events into the GUI thread
-itself. Opened from a file it has no link at all until Reconnect (DG 5277-5285).
+itself. Opened from a file it has no link at all until Reconnect (DG 5277-5285). Start/Pause/Stop, the refresh
+and poll timers, the trigger and the Tune move are in `run_control.RunControl`, a mixin of this window.
 """
 
 from __future__ import annotations
@@ -19,7 +20,6 @@ from PySide6.QtWidgets import (
     QLabel,
     QMainWindow,
     QMessageBox,
-    QProgressDialog,
     QSpinBox,
     QSplitter,
 )
@@ -37,26 +37,28 @@ from motiontool.scope.acquisition import (
 )
 from motiontool.scope.curves import Scope
 from motiontool.scope.export import export_csv
+from motiontool.scope.mdf4 import Mdf4Unavailable, export_mdf4
 from motiontool.scope.measure import cursor_frequency
+from motiontool.scope.select import with_suffix, without_suffix
 from motiontool.scope.testrun import read_testrun
 from motiontool.scope.tune import Tune
 from motiontool.scope.ui.chart import Chart
 from motiontool.scope.ui.curve_list import CurveList
-from motiontool.scope.ui.dialogs import AddCurveDialog, PropertiesDialog, RecordingDialog, TriggerDialog, TunePanel
+from motiontool.scope.ui.dialogs import AddCurveDialog, PropertiesDialog, RecordingDialog, TunePanel
 from motiontool.scope.ui.fft import FftView
 from motiontool.scope.ui.list_menu import show_list_menu
+from motiontool.scope.ui.run_control import RunControl
 
 TITLES = {"free_run": "Free Run", "polling": "Free Run (polling)", "single_shot": "Single Shot",
           "testsetp": "TESTSETP", "tune": "Tune"}
-REFRESH_MS = 50
-LIST_EVERY = 4          # list values and title every 4th chart refresh while recording
+REFRESH_MS = 50         # display refresh while recording (run_control.LIST_EVERY: list and title)
 
 
 class _Relay(QObject):
     event = Signal(object)
 
 
-class ScopeWindow(QMainWindow):
+class ScopeWindow(RunControl, QMainWindow):
     def __init__(self, link_or_bridge=None, variant: str = "free_run", scope: Scope | None = None,
                  parent=None, ask: bool = True, path: Path | None = None):
         super().__init__(parent)
@@ -254,11 +256,6 @@ class ScopeWindow(QMainWindow):
         self._update_title()
         self.redraw()
 
-    @property
-    def running(self) -> bool:
-        return bool((self.free_run and self.free_run.running) or self.polling.running or
-                    (self.single_shot and self.single_shot.running))
-
     # --- curves ----------------------------------------------------------------------------------------------
     def add_signal_curve(self, signal: str, group: str | None = None, name: str | None = None):
         """A curve of a link signal in a group ("Test Group (…)") or polled when group is None."""
@@ -319,151 +316,10 @@ class ScopeWindow(QMainWindow):
         self.list.rebuild()
         self.zoom_reset()
 
-    # --- run -------------------------------------------------------------------------------------------------
-    def start(self) -> None:
-        link = self.link
-        if link is None:
-            QMessageBox.warning(self, "Oscilloscope", "No controller connected (Reconnect first).")
-            return
-        resume = self.paused
-        if resume:
-            span = self.scope.time_span()
-            if span:
-                self.scope.pauses.append(span[1])  # the red bar where recording resumed (DG 5943)
-        else:
-            self.scope.pauses.clear()
-        self.paused = False
-        try:
-            if self.scope.variant == "single_shot":
-                group = next((g for g in self.scope.groups if g.method == "single_shot" and g.active), None)
-                if group is None:
-                    raise ValueError("no active Single Shot group")
-                self.single_shot = SingleShot(self.scope, link, group.name)
-                self.single_shot.start()
-            else:
-                groups = [g for g in self.scope.groups if g.method == "free_run" and g.active
-                          and any(c.active for c in self.scope.members(g.name))]
-                if groups:
-                    self.free_run = FreeRun(self.scope, link, groups[0].name)
-                    self.free_run.trigger, self.free_run.single = self.trigger, self.trigger_single
-                    self.free_run.start(clear=not resume)
-                self.polling.link = link
-                if self.polling.curves():
-                    self.polling.start(clear=not resume)
-                    self.poll_timer.setInterval(self.scope.settings.poll_ms)
-                    self.poll_timer.start()
-                if not groups and not self.polling.curves():
-                    raise ValueError("no active curve to record: add a curve first")
-        except (ValueError, LinkError) as exc:
-            QMessageBox.warning(self, "Oscilloscope", str(exc)) if self.ask else None
-            self.statusBar().showMessage(str(exc), 10000)
-            return
-        self.chart.live = True
-        self.refresh_timer.start()
-        self._update_title()
-
-    def pause(self) -> None:
-        if self.running and self.scope.variant != "single_shot":
-            self._stop_acquisition()
-            self.paused = True
-            self._finish_run()
-
-    def stop(self) -> None:
-        """Stop ends only the recording; the program keeps running (DG 4627, 5859). Single Shot uploads now."""
-        was_single = self.single_shot is not None and self.single_shot.running
-        self._stop_acquisition()
-        if was_single:
-            progress = QProgressDialog("Uploading the recording …", None, 0, 0, self)
-            progress.setWindowTitle("Single Shot")
-            progress.show()
-            try:
-                sets = self.single_shot.stop()
-                self.statusBar().showMessage(f"Uploaded {sets} sample sets", 10000)
-            except LinkError as exc:
-                self.statusBar().showMessage(f"Upload failed: {exc}", 10000)
-            progress.close()
-        self.paused = False
-        self._finish_run()
-
-    def _stop_acquisition(self) -> None:
-        self.poll_timer.stop()
-        self.polling.stop()
-        if self.free_run is not None:
-            with contextlib.suppress(LinkError):
-                self.free_run.stop()
-
-    def _finish_run(self) -> None:
-        self.refresh_timer.stop()
-        self.chart.live = False
-        self.chart.set_pauses(self.scope.pauses)
-        self.zoom_reset()
-        self._update_title()
-
     def show_fft(self) -> FftView:
         self._fft = FftView(self)
         self._fft.show()
         return self._fft
-
-    def trigger_dialog(self, dialog: TriggerDialog | None = None) -> None:
-        """Set the Free Run trigger; a dialog given here has been filled in and accepted already."""
-        if dialog is None:
-            dialog = TriggerDialog([c.name for c in self.scope.curves], self)
-            dialog.exec()
-        if dialog.result() != TriggerDialog.Accepted:
-            return
-        try:
-            self.trigger = dialog.trigger()
-        except ValueError as exc:
-            QMessageBox.warning(self, "Trigger", str(exc))
-            return
-        self.trigger_single = dialog.single.isChecked()
-        self.statusBar().showMessage("Trigger off" if self.trigger is None else
-                                     f"Trigger: {self.trigger[0]} {self.trigger[1].edge} {self.trigger[1].level:g}",
-                                     5000)
-
-    def _set_poll_ms(self, ms: int) -> None:
-        self.scope.settings.poll_ms = ms
-        if self.poll_timer.isActive():
-            self.poll_timer.setInterval(ms)
-        self._update_title()
-
-    def delete_data(self) -> None:
-        self.scope.clear_data()
-        self.redraw()
-
-    def _poll(self) -> None:
-        try:
-            self.polling.poll()
-        except LinkError as exc:
-            self.statusBar().showMessage(f"Polling stopped: {exc}", 10000)
-            self.stop()
-
-    def _tick(self) -> None:
-        if self.single_shot is not None and self.single_shot.running:
-            self._ticks += 1
-            if self._ticks % LIST_EVERY == 0:  # progress in the title; nothing is drawn (DG 5867)
-                try:
-                    self._recording_status = self.single_shot.status()
-                except LinkError:
-                    self._recording_status = None
-                self._update_title()
-            return
-        if self.free_run is not None and not self.free_run.running and not self.polling.running:
-            self._finish_run()  # a single triggered capture is complete
-            return
-        derived.refresh(self.scope)
-        span = self.scope.time_span()
-        if span and (self.free_run is None or self.free_run.trigger is None):  # follow the newest data
-            x0, x1 = self.chart.view.viewRange()[0]
-            width = max(x1 - x0, self.scope.settings.min_length_ms)
-            o = self.chart.origin()
-            if span[1] - o > x1 or span[1] - o < x0:
-                self.chart.view.setXRange(span[1] - o - width, span[1] - o, padding=0)
-        self.chart.refresh(navigation=False)  # the navigation pane is not drawn while recording (DG 5843)
-        self._ticks += 1
-        if self._ticks % LIST_EVERY == 0:  # numbers people read: 5 updates a second are plenty
-            self.list.update_values(self.mouse_t)
-            self._update_title()
 
     def redraw(self) -> None:
         derived.refresh(self.scope)
@@ -484,46 +340,6 @@ class ScopeWindow(QMainWindow):
             if self.scope.cursors[i] is not None and self.chart.cursors[i].isVisible():
                 self.chart.set_cursor(i, self.scope.cursors[i])
         self.zoom_reset()
-
-    # --- tune ------------------------------------------------------------------------------------------------
-    def run_tune(self) -> None:
-        if self.link is None:
-            return
-        if self.tune is None:
-            self.tune = Tune(self.scope, self.link)
-        self.tune.link = self.link
-        self.tune.config = self.tune_panel.config()
-        try:
-            self.tune.write_parameters(self.tune_panel.parameters())
-            if not self.tune_panel.overlay.isChecked():
-                for g in [g for g in self.scope.groups if g.name.startswith("Tune run")]:
-                    for c in self.scope.members(g.name):
-                        self.scope.remove_curve(c.name)
-            self.tune.begin()
-        except (ValueError, LinkError) as exc:
-            self.tune_panel.state.setText(str(exc))
-            return
-        self.tune_panel.run.setEnabled(False)
-        self.tune_panel.state.setText("Test move running …")
-        self.tune_timer.start()
-
-    def _tune_tick(self) -> None:
-        try:
-            if not self.tune.finished():
-                return
-            result = self.tune.finish()
-        except LinkError as exc:
-            self.tune_panel.state.setText(f"Test failed: {exc}")
-            result = None
-        self.tune_timer.stop()
-        self.tune_panel.run.setEnabled(True)
-        if result is not None:
-            self.tune_panel.add_result(result)
-            settle = "not settled" if result.settling_ms is None else f"settled after {result.settling_ms:.0f} ms"
-            self.tune_panel.state.setText(f"Run {result.run}: overshoot {result.overshoot:.4g} UU, {settle}, "
-                                          f"peak tracking error {result.peak_tracking_error:.4g}")
-            self.list.rebuild()
-            self.zoom_reset()
 
     # --- read-outs -------------------------------------------------------------------------------------------
     def _mouse_time(self, t: float) -> None:
@@ -574,9 +390,25 @@ class ScopeWindow(QMainWindow):
             dialog.exec()
         if dialog.result() != PropertiesDialog.Accepted:
             return False
+        if dialog.old_select != dialog.curve.source.select:
+            self._selection_changed(dialog.curve, dialog.old_select)
         self.list.rebuild()
         self.zoom_reset()
         return True
+
+    def _selection_changed(self, curve, old: str | None) -> None:
+        """A new byte/word/bit selection: the recorded values hold the old one, so they go; a name that carries
+        the old suffix gets the new one (select.with_suffix), and references follow the rename."""
+        curve.buffer.clear()
+        base = without_suffix(curve.name, old)
+        if old is None or base != curve.name:
+            before = curve.name
+            after = self.scope.rename_curve(before, with_suffix(base, curve.source.select))
+            for side in ("left_curve", "right_curve"):
+                if getattr(self.chart, side) == before:
+                    setattr(self.chart, side, after)
+            if self.trigger is not None and self.trigger[0] == before:
+                self.trigger = (after, self.trigger[1])
 
     # --- files ---------------------------------------------------------------------------------------------
     def save_to(self, path: Path | str, with_data: bool = True) -> None:
@@ -590,10 +422,24 @@ class ScopeWindow(QMainWindow):
         if path:
             self.save_to(path if path.endswith(".zbo") else path + ".zbo", with_data)
 
-    def export_dialog(self) -> None:
-        path, _ = QFileDialog.getSaveFileName(self, "Export curves", "", "CSV (*.csv *.txt)")
-        if path:
+    def export_to(self, path: Path | str) -> None:
+        """Export the curves: MDF4 for a .mf4 path (needs asammdf: Mdf4Unavailable without it), else CSV."""
+        if Path(path).suffix.lower() == ".mf4":
+            export_mdf4(self.scope, path)
+        else:
             export_csv(self.scope, path)
+
+    def export_dialog(self) -> None:
+        path, chosen = QFileDialog.getSaveFileName(self, "Export curves", "",
+                                                   "CSV (*.csv *.txt);;MDF4 via asammdf (*.mf4)")
+        if not path:
+            return
+        if chosen.startswith("MDF4") and not path.lower().endswith(".mf4"):
+            path += ".mf4"
+        try:
+            self.export_to(path)
+        except (Mdf4Unavailable, OSError, ValueError) as exc:
+            QMessageBox.warning(self, "Export", str(exc))
 
     def open_dialog(self) -> None:
         path, _ = QFileDialog.getOpenFileName(self, "Open oscilloscope", "",

@@ -1,0 +1,209 @@
+"""Running the oscilloscope (DG 4620-4712, 5859-5869): Start / Pause / Stop, the display refresh and poll timers,
+the Free Run trigger and the Tune test move. A mixin of `ScopeWindow` (scope/ui/window.py), which owns the
+widgets, timers and acquisition objects these methods drive."""
+
+from __future__ import annotations
+
+import contextlib
+
+from PySide6.QtWidgets import QMessageBox, QProgressDialog
+
+from motiontool.comms.protocol import LinkError
+from motiontool.scope import derived
+from motiontool.scope.acquisition import FreeRun, SingleShot
+from motiontool.scope.tune import Tune
+from motiontool.scope.ui.dialogs import TriggerDialog
+
+LIST_EVERY = 4          # list values and title every 4th chart refresh while recording
+
+
+class RunControl:
+    """Start/Pause/Stop, timers, trigger and Tune of a ScopeWindow."""
+
+    @property
+    def running(self) -> bool:
+        return bool((self.free_run and self.free_run.running) or self.polling.running or
+                    (self.single_shot and self.single_shot.running))
+
+    # --- run -------------------------------------------------------------------------------------------------
+    def start(self) -> None:
+        link = self.link
+        if link is None:
+            QMessageBox.warning(self, "Oscilloscope", "No controller connected (Reconnect first).")
+            return
+        resume = self.paused
+        if resume:
+            span = self.scope.time_span()
+            if span:
+                self.scope.pauses.append(span[1])  # the red bar where recording resumed (DG 5943)
+        else:
+            self.scope.pauses.clear()
+        self.paused = False
+        try:
+            if self.scope.variant == "single_shot":
+                group = next((g for g in self.scope.groups if g.method == "single_shot" and g.active), None)
+                if group is None:
+                    raise ValueError("no active Single Shot group")
+                self.single_shot = SingleShot(self.scope, link, group.name)
+                self.single_shot.start()
+            else:
+                groups = [g for g in self.scope.groups if g.method == "free_run" and g.active
+                          and any(c.active for c in self.scope.members(g.name))]
+                if groups:
+                    self.free_run = FreeRun(self.scope, link, groups[0].name)
+                    self.free_run.trigger, self.free_run.single = self.trigger, self.trigger_single
+                    self.free_run.start(clear=not resume)
+                self.polling.link = link
+                if self.polling.curves():
+                    self.polling.start(clear=not resume)
+                    self.poll_timer.setInterval(self.scope.settings.poll_ms)
+                    self.poll_timer.start()
+                if not groups and not self.polling.curves():
+                    raise ValueError("no active curve to record: add a curve first")
+        except (ValueError, LinkError) as exc:
+            QMessageBox.warning(self, "Oscilloscope", str(exc)) if self.ask else None
+            self.statusBar().showMessage(str(exc), 10000)
+            return
+        self.chart.live = True
+        self.refresh_timer.start()
+        self._update_title()
+
+    def pause(self) -> None:
+        if self.running and self.scope.variant != "single_shot":
+            self._stop_acquisition()
+            self.paused = True
+            self._finish_run()
+
+    def stop(self) -> None:
+        """Stop ends only the recording; the program keeps running (DG 4627, 5859). Single Shot uploads now."""
+        was_single = self.single_shot is not None and self.single_shot.running
+        self._stop_acquisition()
+        if was_single:
+            progress = QProgressDialog("Uploading the recording …", None, 0, 0, self)
+            progress.setWindowTitle("Single Shot")
+            progress.show()
+            try:
+                sets = self.single_shot.stop()
+                self.statusBar().showMessage(f"Uploaded {sets} sample sets", 10000)
+            except LinkError as exc:
+                self.statusBar().showMessage(f"Upload failed: {exc}", 10000)
+            progress.close()
+        self.paused = False
+        self._finish_run()
+
+    def _stop_acquisition(self) -> None:
+        self.poll_timer.stop()
+        self.polling.stop()
+        if self.free_run is not None:
+            with contextlib.suppress(LinkError):
+                self.free_run.stop()
+
+    def _finish_run(self) -> None:
+        self.refresh_timer.stop()
+        self.chart.live = False
+        self.chart.set_pauses(self.scope.pauses)
+        self.zoom_reset()
+        self._update_title()
+
+
+    def trigger_dialog(self, dialog: TriggerDialog | None = None) -> None:
+        """Set the Free Run trigger; a dialog given here has been filled in and accepted already."""
+        if dialog is None:
+            dialog = TriggerDialog([c.name for c in self.scope.curves], self)
+            dialog.exec()
+        if dialog.result() != TriggerDialog.Accepted:
+            return
+        try:
+            self.trigger = dialog.trigger()
+        except ValueError as exc:
+            QMessageBox.warning(self, "Trigger", str(exc))
+            return
+        self.trigger_single = dialog.single.isChecked()
+        self.statusBar().showMessage("Trigger off" if self.trigger is None else
+                                     f"Trigger: {self.trigger[0]} {self.trigger[1].edge} {self.trigger[1].level:g}",
+                                     5000)
+
+    def _set_poll_ms(self, ms: int) -> None:
+        self.scope.settings.poll_ms = ms
+        if self.poll_timer.isActive():
+            self.poll_timer.setInterval(ms)
+        self._update_title()
+
+    def delete_data(self) -> None:
+        self.scope.clear_data()
+        self.redraw()
+
+    def _poll(self) -> None:
+        try:
+            self.polling.poll()
+        except LinkError as exc:
+            self.statusBar().showMessage(f"Polling stopped: {exc}", 10000)
+            self.stop()
+
+    def _tick(self) -> None:
+        if self.single_shot is not None and self.single_shot.running:
+            self._ticks += 1
+            if self._ticks % LIST_EVERY == 0:  # progress in the title; nothing is drawn (DG 5867)
+                try:
+                    self._recording_status = self.single_shot.status()
+                except LinkError:
+                    self._recording_status = None
+                self._update_title()
+            return
+        if self.free_run is not None and not self.free_run.running and not self.polling.running:
+            self._finish_run()  # a single triggered capture is complete
+            return
+        derived.refresh(self.scope)
+        span = self.scope.time_span()
+        if span and (self.free_run is None or self.free_run.trigger is None):  # follow the newest data
+            x0, x1 = self.chart.view.viewRange()[0]
+            width = max(x1 - x0, self.scope.settings.min_length_ms)
+            o = self.chart.origin()
+            if span[1] - o > x1 or span[1] - o < x0:
+                self.chart.view.setXRange(span[1] - o - width, span[1] - o, padding=0)
+        self.chart.refresh(navigation=False)  # the navigation pane is not drawn while recording (DG 5843)
+        self._ticks += 1
+        if self._ticks % LIST_EVERY == 0:  # numbers people read: 5 updates a second are plenty
+            self.list.update_values(self.mouse_t)
+            self._update_title()
+
+
+    # --- tune ------------------------------------------------------------------------------------------------
+    def run_tune(self) -> None:
+        if self.link is None:
+            return
+        if self.tune is None:
+            self.tune = Tune(self.scope, self.link)
+        self.tune.link = self.link
+        self.tune.config = self.tune_panel.config()
+        try:
+            self.tune.write_parameters(self.tune_panel.parameters())
+            if not self.tune_panel.overlay.isChecked():
+                for g in [g for g in self.scope.groups if g.name.startswith("Tune run")]:
+                    for c in self.scope.members(g.name):
+                        self.scope.remove_curve(c.name)
+            self.tune.begin()
+        except (ValueError, LinkError) as exc:
+            self.tune_panel.state.setText(str(exc))
+            return
+        self.tune_panel.run.setEnabled(False)
+        self.tune_panel.state.setText("Test move running …")
+        self.tune_timer.start()
+
+    def _tune_tick(self) -> None:
+        try:
+            if not self.tune.finished():
+                return
+            result = self.tune.finish()
+        except LinkError as exc:
+            self.tune_panel.state.setText(f"Test failed: {exc}")
+            result = None
+        self.tune_timer.stop()
+        self.tune_panel.run.setEnabled(True)
+        if result is not None:
+            self.tune_panel.add_result(result)
+            settle = "not settled" if result.settling_ms is None else f"settled after {result.settling_ms:.0f} ms"
+            self.tune_panel.state.setText(f"Run {result.run}: overshoot {result.overshoot:.4g} UU, {settle}, "
+                                          f"peak tracking error {result.peak_tracking_error:.4g}")
+            self.list.rebuild()
+            self.zoom_reset()
