@@ -36,8 +36,10 @@ class Token:
         return f"Token({self.kind}, {self.text!r}, {self.loc})"
 
 
+# Blanks before a token are part of its match (half as many matches); the token starts at its group.
 _TOKEN = re.compile(r"""
- (?P<ws>(?:[ \t\f\r]|\\\r?\n)+)
+ [ \t\f\r]*(?:
+ (?P<ws>(?:\\\r?\n[ \t\f\r]*)+)
 |(?P<nl>\n)
 |(?P<lc>//[^\n]*)
 |(?P<bc>/\*)
@@ -49,6 +51,7 @@ _TOKEN = re.compile(r"""
 |(?P<str>"[^"\n]*")
 |(?P<chr>'[^'\n]')
 |(?P<op><<|>>|==|!=|<=|>=|\+\+|--|[-+*%^&|~<>=()\[\]{},;:.!])
+|(?P<end>\Z))
 """, re.VERBOSE)
 _DIRECTIVE = re.compile(r"[ \t\f\r]*#((?:[^\n\\]|\\\r?\n|\\(?!\r?\n))*)")
 _BAD_NUMBER_TAIL = re.compile(r"[A-Za-z0-9_]")
@@ -91,6 +94,8 @@ def tokenize(text: str, file: str, line: int = 1, col: int = 1,
                 continue
         m = match(text, pos)
         if m is None:
+            while text[pos] in " \t\f\r":  # the blanks before the offending character
+                pos += 1
             ch = text[pos]
             name = _NAMES.get(ch)
             if ch == '"':
@@ -103,20 +108,21 @@ def tokenize(text: str, file: str, line: int = 1, col: int = 1,
                 detail = " (APOSS divides with '%')"
             raise CompileError(f"unexpected character '{ch}'{detail}", loc_at(pos))
         kind = m.lastgroup
-        start, end = m.start(), m.end()
+        start, end = m.start(m.lastindex), m.end()
         if kind == "ident":
-            word = m.group()
+            word = text[start:end]
             append(Token(IDENT, word, word.upper(), Location(file, line, start - line_start + 1)))
             at_line_start = False
         elif kind == "op":
-            word = m.group()
+            word = text[start:end]
             append(Token(OP, word, word, Location(file, line, start - line_start + 1)))
             at_line_start = False
+        elif kind == "end":
+            pass
         elif kind == "ws":
-            splices = m.group().count("\n")
-            if splices:
-                line += splices
-                line_start = m.group().rfind("\n") + start + 1
+            blanks = m.group("ws")  # line continuations (backslash-newline) with the blanks after them
+            line += blanks.count("\n")
+            line_start = blanks.rfind("\n") + start + 1
         elif kind == "nl":
             append(Token(NEWLINE, "\n", None, Location(file, line, start - line_start + 1)))
             line += 1
@@ -143,16 +149,16 @@ def tokenize(text: str, file: str, line: int = 1, col: int = 1,
                 at_line_start = False
             end = close + 2
         elif kind == "terminal":  # OUT X59/3 1: a connector pin (CR 3152-3155)
-            append(Token(TERMINAL, m.group(), m.group().upper(), loc_at(start)))
+            append(Token(TERMINAL, text[start:end], text[start:end].upper(), loc_at(start)))
             at_line_start = False
         elif kind == "str":
-            append(Token(STRING, m.group(), m.group()[1:-1], loc_at(start)))
+            append(Token(STRING, text[start:end], text[start:end][1:-1], loc_at(start)))
             at_line_start = False
         elif kind == "chr":
-            append(Token(INT, m.group(), ord(m.group()[1]), loc_at(start)))
+            append(Token(INT, text[start:end], ord(text[start:end][1]), loc_at(start)))
             at_line_start = False
         else:  # numbers
-            word = m.group()
+            word = text[start:end]
             if end < n and _BAD_NUMBER_TAIL.match(text, end):
                 tail = re.match(r"[A-Za-z0-9_]*", text[end:]).group()
                 raise CompileError(f"invalid number '{word}{tail}'", loc_at(start))
