@@ -48,7 +48,13 @@ def _cmd_run(args: argparse.Namespace) -> int:
     options = RunOptions(seconds=args.seconds, settings=args.set, inputs=args.input, include_dirs=args.include,
                          trace=args.trace, signals=[s for s in args.signals.split(",") if s.strip()],
                          trace_interval_ms=args.interval, record=args.record, realtime=args.realtime,
-                         config=args.config)
+                         config=args.config, nodes=args.node, master_node=args.master_node)
+    if args.master_node is not None and not args.node:
+        print("motiontool run: --master-node needs --node (several controllers)", file=sys.stderr)
+        return 1
+    if args.file is None and not args.node:
+        print("motiontool run: give FILE.m, or --node ID:PROGRAM.m for several controllers", file=sys.stderr)
+        return 1
     return run_program(args.file, options)
 
 
@@ -84,15 +90,26 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("run", help="run a program on the embedded simulated controller",
                        description="stdout: exactly the program's PRINT output; stderr: controller errors. "
                                    "Exit 0 when the program ends or the time is up, 1 on a compile error, "
-                                   "2 on an unhandled controller error.")
-    p.add_argument("file", type=Path, metavar="FILE.m")
+                                   "2 on an unhandled controller error. With --node, several controllers (node "
+                                   "ids 1..32) run in lockstep on one master signal: FILE.m (optional then) on "
+                                   "node 1, each --node ID:PROGRAM.m on node ID; the virtual master (PULSVEL) of "
+                                   "--master-node is the master input of all the others; each output line is "
+                                   "prefixed with its node id ('2: text'), --trace columns are 'ID:SIGNAL', "
+                                   "--record writes OUT-nodeID.csv; the time ends when every program has stopped.")
+    p.add_argument("file", type=Path, metavar="FILE.m", nargs="?")
+    p.add_argument("--node", action="append", default=[], metavar="ID:PROGRAM.m",
+                   help="also run PROGRAM.m on controller ID (1..32) of the same simulated project; repeatable")
+    p.add_argument("--master-node", type=int, metavar="ID",
+                   help="with --node: the node whose virtual master (PULSVEL) drives the master input of all the "
+                        "others (default: the lowest node id)")
     p.add_argument("--seconds", type=float, default=60.0, help="virtual time to run at most (default 60)")
-    p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
-                   help="set a parameter before the start, e.g. KPROP=50 or 32-60=50")
-    p.add_argument("--input", action="append", default=[], metavar="N=V@T",
-                   help="set digital input N to V at T ms (default 0)")
+    p.add_argument("--set", action="append", default=[], metavar="[ID:]NAME=VALUE",
+                   help="set a parameter before the start, e.g. KPROP=50 or 32-60=50; with ID: only on that node")
+    p.add_argument("--input", action="append", default=[], metavar="[ID:]N=V@T",
+                   help="set digital input N to V at T ms (default 0); with ID: only on that node")
     p.add_argument("--include", "-I", action="append", type=Path, default=[], metavar="DIR")
-    p.add_argument("--config", type=Path, metavar="CONF.zbc", help="load parameters and arrays first")
+    p.add_argument("--config", type=Path, metavar="CONF.zbc",
+                   help="load parameters and arrays first (with --node: into every node)")
     p.add_argument("--trace", type=Path, metavar="OUT.csv", help="write a trace of --signals")
     p.add_argument("--signals", default="APOS,CPOS,TRACKERR", help="comma-separated signal names")
     p.add_argument("--interval", type=int, default=1, metavar="MS", help="trace interval (default 1 ms)")

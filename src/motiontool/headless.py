@@ -32,9 +32,13 @@ class RunOptions:
     record: Path | None = None
     realtime: bool = False
     config: Path | None = None                              # .zbc/.cnf loaded before the start
+    nodes: list[str] = field(default_factory=list)          # ID:PROGRAM.m: several controllers (run_nodes)
+    master_node: int | None = None                          # whose PULSVEL is everyone's master (default lowest)
 
 
-def run_program(path: Path, options: RunOptions, out: TextIO = sys.stdout, err: TextIO = sys.stderr) -> int:
+def run_program(path: Path | None, options: RunOptions, out: TextIO = sys.stdout, err: TextIO = sys.stderr) -> int:
+    if options.nodes:  # a multi-axis project: several controllers on one master signal
+        return run_nodes(path, options, out, err)
     result = compile_source(path=path, include_dirs=options.include_dirs)
     for d in result.diagnostics:
         print(d.format(), file=err)
@@ -139,3 +143,167 @@ def _write_recordings(link: EmbeddedLink, path: Path) -> None:
     if not recordings:
         with open(path, "w", newline="", encoding="utf-8") as f:
             csv.writer(f).writerow(["time_ms"])
+
+
+# --- several controllers (--node): a multi-axis project on one master signal (comms/bus.py) -------------------
+_NODE = re.compile(r"^\s*(-?\d+)\s*:(.+)$")
+_FOR_NODE = re.compile(r"^\s*(-?\d+)\s*:(.*)$")
+
+
+class _Usage(Exception):
+    """A bad command line or file: the message goes to stderr, exit 1."""
+
+
+def _node_programs(path: Path | None, specs: list[str]) -> dict[int, Path]:
+    """FILE.m on node 1 (if given) and every --node ID:PROGRAM.m, in the order given."""
+    programs: list[tuple[int, Path]] = [(1, path)] if path is not None else []
+    for spec in specs:
+        m = _NODE.match(spec)
+        if not m:
+            raise _Usage(f"motiontool run: --node needs ID:PROGRAM.m, got '{spec}'")
+        programs.append((int(m.group(1)), Path(m.group(2).strip())))
+    nodes = [n for n, _ in programs]
+    for n in nodes:  # the bus says the same; here before anything is compiled
+        if not 1 <= n <= 32:
+            raise _Usage(f"motiontool run: --node {n}: node id {n} is outside 1..32")
+        if nodes.count(n) > 1:
+            raise _Usage(f"motiontool run: node id {n} is given twice"
+                         + (" (FILE.m runs on node 1)" if path is not None and n == 1 else ""))
+    return dict(programs)
+
+
+def _per_node(values: list[str], nodes: list[int], option: str) -> dict[int, list[str]]:
+    """`[ID:]VALUE` options: with ID for that node, without for every node."""
+    result: dict[int, list[str]] = {n: [] for n in nodes}
+    for value in values:
+        m = _FOR_NODE.match(value)
+        if m:
+            n = int(m.group(1))
+            if n not in result:
+                raise _Usage(f"motiontool run: {option} {value}: node {n} runs no program (nodes {nodes})")
+            result[n].append(m.group(2))
+        else:
+            for n in nodes:
+                result[n].append(value)
+    return result
+
+
+def run_nodes(path: Path | None, options: RunOptions, out: TextIO = sys.stdout, err: TextIO = sys.stderr) -> int:
+    """Several simulated controllers in lockstep (comms/bus.py, kernel/simulation.py): FILE.m on node 1 and every
+    --node ID:PROGRAM.m; the virtual master (PULSVEL) of --master-node (default the lowest id) is the master input
+    of all the others. stdout: every PRINT as `N: text`, stderr: controller errors as `N: error …`."""
+    from motiontool.comms.bus import EmbeddedBus
+
+    try:
+        programs = _node_programs(path, options.nodes)
+        nodes = sorted(programs)
+        settings = _per_node(options.settings, nodes, "--set")
+        inputs = _per_node(options.inputs, nodes, "--input")
+    except _Usage as exc:
+        print(str(exc), file=err)
+        return EXIT_COMPILE
+    images = {}
+    for n in nodes:
+        result = compile_source(path=programs[n], include_dirs=options.include_dirs)
+        for d in result.diagnostics:
+            print(d.format(), file=err)
+        if result.ok:
+            images[n] = result.image
+    if len(images) < len(nodes):
+        return EXIT_COMPILE
+    config = None
+    if options.config is not None:
+        try:
+            config = read_config(options.config)
+        except ConfigError as exc:
+            print(str(exc), file=err)
+            return EXIT_COMPILE
+    try:
+        bus = EmbeddedBus(nodes, master_node=options.master_node if options.master_node is not None else nodes[0])
+    except ValueError as exc:
+        print(f"motiontool run: --master-node: {exc}", file=err)
+        return EXIT_COMPILE
+    failed: set[int] = set()
+    traces: dict[int, dict[int, list]] = {n: {} for n in nodes}
+
+    def listener(n: int):
+        def on_event(event: LinkEvent) -> None:
+            if event.kind == "print":
+                print(f"{n}: {event.text}", file=out)
+            elif event.kind == "error":
+                where = f" (line {event.line})" if event.line else ""
+                print(f"{n}: {event.text}{where}", file=err)
+            elif event.kind == "program" and event.text == "program error":
+                failed.add(n)
+            elif event.kind == "samples":
+                for t, values in zip(event.data["time_ms"], event.data["values"], strict=True):
+                    traces[n][t] = values
+        return on_event
+
+    try:
+        for n in nodes:
+            link = bus.link(n)
+            link.subscribe(listener(n))
+            if config is not None:
+                try:
+                    download_config(link, config)
+                except ConfigError as exc:
+                    print(f"{options.config}: {exc}", file=err)
+                    return EXIT_COMPILE
+            for setting in settings[n]:
+                key, _, value = setting.partition("=")
+                try:
+                    number = int(value, 0)
+                except ValueError:
+                    print(f"motiontool run: --set needs [ID:]NAME=VALUE with a whole number, got '{setting}'",
+                          file=err)
+                    return EXIT_COMPILE
+                link.write_parameter(key.strip(), number)
+            for spec in inputs[n]:
+                m = _INPUT.match(spec.strip())
+                if not m:
+                    print(f"motiontool run: --input needs [ID:]N=V or [ID:]N=V@T (ms), got '{spec}'", file=err)
+                    return EXIT_COMPILE
+                link.call("schedule_input", number=int(m.group(1)), value=int(m.group(2)),
+                          time_ms=int(m.group(3) or 0))
+            if options.trace:
+                link.call("stream", signals=options.signals, interval_ms=options.trace_interval_ms)
+        for n in nodes:
+            bus.link(n).download(images[n].to_bytes(), name=images[n].name)
+            bus.link(n).start()
+        _advance_all(bus, nodes, options)
+        if options.trace:
+            for n in nodes:
+                bus.link(n).call("stream", signals=[], interval_ms=1)
+            times = sorted(set().union(*(traces[n] for n in nodes)))
+            header = ["time_ms", *(f"{n}:{s}" for n in nodes for s in options.signals)]
+            empty = [""] * len(options.signals)
+            rows = [[t, *(v for n in nodes for v in traces[n].get(t, empty))] for t in times]
+            _write_csv(options.trace, header, rows)
+        if options.record:
+            for n in nodes:
+                target = options.record.with_name(f"{options.record.stem}-node{n}{options.record.suffix}")
+                _write_recordings(bus.link(n), target)
+    except LinkError as exc:
+        print(f"motiontool run: {exc}", file=err)
+        return EXIT_CONTROLLER
+    finally:
+        bus.close()
+    return EXIT_CONTROLLER if failed else EXIT_OK
+
+
+def _advance_all(bus, nodes: list[int], options: RunOptions) -> None:
+    """Virtual time for all nodes together until every program has stopped or the time is up."""
+    import time
+
+    total = int(options.seconds * 1000)
+    step, elapsed = 50, 0
+    started = time.monotonic()
+    while elapsed < total:
+        n = min(step, total - elapsed)
+        bus.advance(n)
+        elapsed += n
+        if options.realtime:  # pace virtual time at real time
+            time.sleep(max(0.0, elapsed / 1000 - (time.monotonic() - started)))
+        if all(bus.link(node).status().program_state != "running" for node in nodes):
+            break

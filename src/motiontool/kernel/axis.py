@@ -107,8 +107,11 @@ class Axis:
             if self.mode == STOPPING:
                 self.motor_stop_state = self.stopped_motion is not None
             self.mode = IDLE
-        if self.control_on:
-            self._monitor()
+        if self.control_on:  # _monitor, its common case inline (one call less per tick)
+            if abs(pg.position - self.apos) > self.gains.poserr:
+                self._monitor()
+            else:
+                self._poserr_count = 0
 
     def _control(self, pg: ProfileGenerator) -> float:
         g = self.gains

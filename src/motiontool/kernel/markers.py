@@ -19,6 +19,7 @@ SYNCMMAXCORR and realised through SyncMotion.correct (SYNCOFFTIME trapezoid or a
 
 from __future__ import annotations
 
+import functools
 import math
 import random
 from dataclasses import dataclass
@@ -123,7 +124,7 @@ class MarkerChannel:
             last, self._cells = self._cells, cells
             if cells == last:
                 return _NONE
-            z = MarkerSensor(period=z_period, width=Z_WIDTH_QC)
+            z = _index_pulses(z_period)
             found = [(b, _fraction(p0, p1, b)) for b, rising in z.edges(p0, p1) if rising == (marker_type == 0)]
         elif marker_type == 2 or marker_type == 3:
             want_rising = marker_type == 2
@@ -147,12 +148,28 @@ class MarkerChannel:
 _NONE: list = []  # shared empty result, never modified
 
 
+@functools.lru_cache(maxsize=16)
+def _index_pulses(period: int) -> MarkerSensor:
+    """The encoder's index pulses as a (frozen, shareable) MarkerSensor; made once per index period."""
+    return MarkerSensor(period=period, width=Z_WIDTH_QC)
+
+
+def _between(cells: tuple | None, period: int) -> tuple[float, float]:
+    """The open range of positions whose MarkerChannel cells are `cells` (for this index period), shrunk by ½ qc;
+    empty without cells or for another period."""
+    if cells is None or cells[2] != period:
+        return math.inf, -math.inf
+    a, b, zp = cells
+    return max(a * zp, b * zp + Z_WIDTH_QC) + 0.5, min((a + 1) * zp, (b + 1) * zp + Z_WIDTH_QC) - 0.5
+
+
 def _fraction(p0: float, p1: float, b: float) -> float:
     return (b - p0) / (p1 - p0) if p1 != p0 else 1.0
 
 
 class Markers:
-    """The controller's marker inputs: latches MIPOS/IPOS every tick and feeds a running SYNCM."""
+    """The controller's marker inputs: latches MIPOS/IPOS every tick and feeds a running SYNCM or the marker
+    handling of a running SYNCC/SYNCCMM/SYNCCMS (kernel/cam_markers.py)."""
 
     def __init__(self, ctl):
         self.ctl = ctl
@@ -172,6 +189,20 @@ class Markers:
         ctl.params.readouts.update({3453: lambda: ctl.uu(self.ipos_qc()), 3454: self.mipos})
 
     def tick(self) -> None:
+        ctl = self.ctl
+        axis = ctl.axis
+        values = ctl.params.values
+        sync = axis.sync
+        # fast path (issue 5, benchmarks/kernel_rtf.py): no marker can come this tick, see _quiet
+        key = (self.master._cells, self.slave._cells, axis.scaling, values[3231], values[3319], values[3320])
+        if (sync is None or sync.markers is None) and (key == self._q_key or self._quiet(key)):
+            m1 = ctl.master.position
+            s1 = axis.plant.position
+            m_lo, m_hi, s_lo, s_hi = self._q
+            if (m_lo < m1 < m_hi or m1 == self._m) and (s_lo < s1 < s_hi or s1 == self._s):
+                self._m, self._s = m1, s1
+                self.master_events = self.slave_events = _NONE
+                return
         ctl = self.ctl
         values = ctl.params.values
         axis = ctl.axis
@@ -196,6 +227,24 @@ class Markers:
             self.slave_events = [raw for raw, _ in slave]
         if marker_sync is not None:
             marker_sync.tick(self.master_events, self.slave_events, m1, s1)
+
+    # the fast path of tick(): the key it was computed for and the position bounds (see _quiet)
+    _q_key: tuple = ()
+    _q: tuple = (0.0, 0.0, 0.0, 0.0)
+
+    def _quiet(self, key: tuple) -> bool:
+        """The fast path of tick() applies without a sensor on either side, with marker types 0/1 (index pulse) and
+        no marker synchronisation: then tick() would find no marker and change nothing but the remembered positions
+        while each side stands or stays between the same index-pulse edges as at its last evaluation (the
+        channel's cells). For a new key (cells, scaling, 32-31, 33-19, 33-20) this computes those position bounds
+        (½ qc of margin against rounding); False when the fast path does not apply."""
+        master_cells, slave_cells, scaling, lines, master_type, slave_type = key
+        if (master_type >= 2 or slave_type >= 2 or scaling is not self._scaling
+                or self.master.sensor is not None or self.slave.sensor is not None):
+            return False
+        self._q = (*_between(master_cells, 4 * max(1, lines)), *_between(slave_cells, self._slave_period))
+        self._q_key = key
+        return True
 
     # --- readouts -------------------------------------------------------------------------------------------
     def mipos(self) -> int:

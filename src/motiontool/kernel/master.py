@@ -95,6 +95,11 @@ class Master:
         self.pending_acc: float | None = None  # PULSACC waits for the next PULSVEL
         self._history: deque[int] = deque([self.raw], maxlen=MAVEL_WINDOW_MS + 1)
         self._noise = random.Random(self.config.seed) if self.config.jitter else None
+        # the master input is wired to a signal shared by several controllers (kernel/simulation.py): the increment
+        # of this tick of `feed` (a Master ticked before this one) replaces the external encoder's — with
+        # `feed_virtual_only` only while feed's virtual master runs (its encoder output); own PULSVEL still wins
+        self.feed: Master | None = None
+        self.feed_virtual_only = False
 
     # --- readouts -------------------------------------------------------------------------------------------
     @property
@@ -119,6 +124,9 @@ class Master:
             else:
                 v += acc if target > v else -acc
             self.virtual_speed = v
+        elif self.feed is not None:
+            feed = self.feed
+            v = feed.velocity if feed.virtual or not self.feed_virtual_only else 0.0
         else:
             v = self.config.speed_at(time_ms)
             if self._noise is not None:
