@@ -16,17 +16,19 @@ from enum import IntEnum
 
 import numpy as np
 
-#: Fix point types [DG L3998-4022]: Curve, Tangent, Trapezoid, 3'rd order.
-FIX_POINT_TYPES = ("C", "T", "CZ", "C3")
-#: Fix point type code stored in the controller array (our choice, docs/formats/cam-array.md).
-FIX_POINT_TYPE_CODES = {"C": 0, "T": 1, "CZ": 2, "C3": 3}
+#: Fix point types [DG L3998-4022]: Curve, Tangent, Trapezoid, 3'rd order; then, beyond the manual, the
+#: VDI 2143 motion laws of camcurve.motionlaws (the segment ending at such a point follows the law, decision C10).
+LAW_TYPES = ("P345", "MSIN", "CYCL", "MTRAP", "HARM")
+FIX_POINT_TYPES = ("C", "T", "CZ", "C3", *LAW_TYPES)
+#: Fix point type code stored in the controller array (our choice, docs/formats/cam-array.md); laws 4..8.
+FIX_POINT_TYPE_CODES = {"C": 0, "T": 1, "CZ": 2, "C3": 3, "P345": 4, "MSIN": 5, "CYCL": 6, "MTRAP": 7, "HARM": 8}
 
 MAX_NAME_LENGTH = 16  # "Names may be up to 16 characters long" [DG L3696]
 MAX_USER_PAIRS = 25  # "A maximum of 25 Start Stop point pairs can be defined" [DG L4048]
 MIN_FIX_POINTS_ARRAY = 4  # curve info FixPointNo "min 4" (cam-array-layout.md)
 
 # segment kinds produced by segment_kinds()
-LINE, SPLINE, TRAPEZOID, CUBIC = "line", "spline", "trapezoid", "cubic"
+LINE, SPLINE, TRAPEZOID, CUBIC, LAW = "line", "spline", "trapezoid", "cubic", "law"
 
 
 class CurveError(ValueError):
@@ -76,6 +78,11 @@ def segment_kinds(types: list[str] | tuple[str, ...]) -> list[str]:
     (T → spline/quintic, CZ → trapezoid, C3 → cubic); C points start spline segments.  CZ and C3 segments must
     run between two straight sections ("can only be used between adjacent tangent segments" [DG L4014-4020]),
     so at least one curved segment always separates two straight sections [DG L3992].
+
+    Motion-law points (LAW_TYPES, decision C10): the segment *ending* at a law point follows the law (LAW);
+    it must be a curved segment that a C point, a law point or a closing T point opened (not a straight or a
+    CZ/C3 segment, and not the first point, which ends no segment).  The segment leaving a law point is shaped
+    as if the point were a C point.  A law starts and ends at rest: its neighbours see a zero gradient there.
     """
     n = len(types)
     if set(types) == {"C"}:  # the common all-curve case, fast for long curves
@@ -87,6 +94,11 @@ def segment_kinds(types: list[str] | tuple[str, ...]) -> list[str]:
         if t not in FIX_POINT_TYPES:
             raise CurveError("fix_points", f"point {i + 1}: unknown type {t!r} (one of {', '.join(FIX_POINT_TYPES)})",
                              i)
+        if t in LAW_TYPES:
+            _law_segment(kinds, types, i, open_line)
+            if not last:
+                kinds.append(SPLINE)
+            continue
         if open_line:
             if t == "C":
                 raise CurveError("fix_points", f"point {i}: a tangent (T) point needs a second T point to form a "
@@ -112,6 +124,20 @@ def segment_kinds(types: list[str] | tuple[str, ...]) -> list[str]:
             raise CurveError("fix_points", f"point {k + 1}: a {label} segment must be followed by a straight "
                                            "section (tangent pair)", k)
     return kinds
+
+
+def _law_segment(kinds: list[str], types, i: int, open_line: bool) -> None:
+    """Turn the segment ending at law point i into a LAW segment, or raise CurveError."""
+    if i == 0:
+        raise CurveError("fix_points", f"point 1: a motion law ({types[0]}) shapes the segment ending at its point; "
+                                       "the first point ends no segment", 0)
+    if open_line:
+        raise CurveError("fix_points", f"point {i}: a tangent (T) point needs a second T point to form a straight "
+                                       f"line, point {i + 1} is the motion law {types[i]}", i)
+    if kinds[-1] != SPLINE:
+        raise CurveError("fix_points", f"point {i + 1}: the motion law {types[i]} cannot replace the "
+                                       f"{kinds[-1]} segment that point {i} ({types[i - 1]}) starts", i)
+    kinds[-1] = LAW
 
 
 def _finite(name: str, value: float) -> None:

@@ -11,7 +11,9 @@ beginning and the end is equated." [DG L1356-1358].  Segment shapes [DG L3998-40
   (``_boundary_gradients``);
 * a single curved segment between two straight sections: the 5th-order Hermite polynomial matching position and
   slope at both ends with zero acceleration there ("both the velocity and acceleration will match" [DG L4004]);
-* CZ: trapezoidal velocity (two constant-acceleration halves), C3: the cubic Hermite segment.
+* CZ: trapezoidal velocity (two constant-acceleration halves), C3: the cubic Hermite segment;
+* a motion-law point (P345, MSIN, CYCL, MTRAP, HARM; beyond the manual): the segment ending there follows the
+  VDI 2143 law, as quintic pieces from camcurve.motionlaws; its neighbours are clamped to gradient 0 there.
 
 The whole profile is one scipy PPoly (degree 5, extra breakpoint in the middle of CZ segments), so every
 quantity is vectorised over numpy arrays.  Outside 0..master_length the profile repeats cyclically, the slave
@@ -29,9 +31,11 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.interpolate import CubicSpline, PPoly
 
-from motiontool.camcurve.model import CUBIC, LINE, SPLINE, TRAPEZOID, Curve, CurveType, StartStopPair
+from motiontool.camcurve import motionlaws
+from motiontool.camcurve.model import CUBIC, LAW, LINE, SPLINE, TRAPEZOID, Curve, CurveType, StartStopPair
 
 _DEGREE = 5
+_KIND_CODES = {LINE: 0, SPLINE: 1, TRAPEZOID: 2, CUBIC: 3, LAW: 4}
 
 
 def _column(ascending: list[float]) -> np.ndarray:
@@ -72,31 +76,45 @@ def _spline(xs: np.ndarray, ys: np.ndarray, left: float | None, right: float | N
 class CurveProfile:
     """The evaluated profile of one Curve.  Build once (``profile(curve)`` caches), evaluate many times."""
 
-    def __init__(self, curve: Curve) -> None:
+    def __init__(self, curve: Curve, moved_from: tuple[CurveProfile, int] | None = None) -> None:
+        """``moved_from`` = (profile, index): the profile of a curve that differs from ``curve`` only in the
+        position of fix point ``index`` (a drag); its point types, and so the segment kinds, are taken over."""
         self.curve = curve
-        self.kinds = curve.segment_kinds
-        self.x = np.array([p.master for p in curve.fix_points], dtype=float)
-        self.y = np.array([p.slave for p in curve.fix_points], dtype=float)
+        n = len(curve.fix_points)
+        if moved_from is None:
+            self.kinds = curve.segment_kinds
+            self.x = np.array([p.master for p in curve.fix_points], dtype=float)
+            self.y = np.array([p.slave for p in curve.fix_points], dtype=float)
+            kind_codes = np.fromiter(map(_KIND_CODES.__getitem__, self.kinds), dtype=np.int8, count=n - 1)
+        else:
+            base, index = moved_from
+            self.kinds, kind_codes = base.kinds, base.kind_codes
+            self.x, self.y = base.x.copy(), base.y.copy()
+            self.x[index], self.y[index] = curve.fix_points[index].master, curve.fix_points[index].slave
+        self.kind_codes = kind_codes
         h = np.diff(self.x)
-        self.line_slopes = {k: (self.y[k + 1] - self.y[k]) / h[k] for k, kind in enumerate(self.kinds)
-                            if kind == LINE}
-        self.runs = self._spline_runs()
+        self.line_slopes = {int(k): (self.y[k + 1] - self.y[k]) / h[k]
+                            for k in np.nonzero(kind_codes == _KIND_CODES[LINE])[0]}
+        laws = np.nonzero(kind_codes == _KIND_CODES[LAW])[0]
+        self.line_slopes.update(dict.fromkeys(map(int, laws), 0.0))  # a law meets its neighbours at rest
+        self.runs = self._spline_runs(kind_codes == _KIND_CODES[SPLINE])
         gs, ge = self._boundary_gradients()
         self.start_gradient_used, self.end_gradient_used = gs, ge
         splines = {run[0]: self._run_spline(run, gs, ge) for run in self.runs}
         quintic_runs = {run[0] for run in self.runs if self._is_quintic(run)}
         # piece p of the PPoly: segment k is piece k + (trapezoids before k); a trapezoid is two pieces
-        kinds = np.array(self.kinds)
-        trapezoid = kinds == TRAPEZOID
-        piece = np.arange(len(kinds)) + np.concatenate([[0], np.cumsum(trapezoid)[:-1]])
-        coeffs = np.zeros((_DEGREE + 1, len(kinds) + int(trapezoid.sum())))
+        trapezoid = kind_codes == _KIND_CODES[TRAPEZOID]
+        piece = np.arange(n - 1) + np.concatenate([[0], np.cumsum(trapezoid)[:-1]])
+        coeffs = np.zeros((_DEGREE + 1, n - 1 + int(trapezoid.sum())))
         breaks = np.empty(coeffs.shape[1] + 1)
         breaks[piece] = self.x[:-1]
         breaks[-1] = self.x[-1]
         for first, cs in splines.items():  # whole spline runs at once (a curve may have 10 000 points)
             if first not in quintic_runs:
                 coeffs[_DEGREE - 3:, piece[first:first + cs.c.shape[1]]] = cs.c
-        for k in np.nonzero((kinds != SPLINE) | np.isin(np.arange(len(kinds)), list(quintic_runs)))[0]:
+        quintic = np.zeros(n - 1, dtype=bool)
+        quintic[list(quintic_runs)] = True
+        for k in np.nonzero((kind_codes != _KIND_CODES[SPLINE]) | quintic)[0]:
             kind, p = self.kinds[k], piece[k]
             y0, y1, hk = self.y[k], self.y[k + 1], h[k]
             if kind == LINE:
@@ -105,25 +123,26 @@ class CurveProfile:
                 coeffs[:, p] = _column(_quintic(hk, y0, self.line_slopes[k - 1], y1, self.line_slopes[k + 1]))
             elif kind == CUBIC:
                 coeffs[:, p] = _column(_cubic(hk, y0, self.line_slopes[k - 1], y1, self.line_slopes[k + 1]))
+            elif kind == LAW:  # replaced by the law's pieces below
+                continue
             else:
                 assert kind == TRAPEZOID, kind
                 first, second = _trapezoid(hk, y0, self.line_slopes[k - 1], y1, self.line_slopes[k + 1])
                 coeffs[:, p], coeffs[:, p + 1] = _column(first), _column(second)
                 breaks[p + 1] = self.x[k] + hk / 2
+        if len(laws):  # motion-law segments (camcurve.motionlaws): quintic pieces of the law
+            coeffs, breaks = motionlaws.splice(coeffs, breaks, [(int(piece[k]), curve.fix_points[k + 1].type,
+                                                                 self.y[k], self.y[k + 1]) for k in laws])
         self.ppoly = PPoly(coeffs, breaks, extrapolate=True)
-        self._derivatives = [self.ppoly] + [self.ppoly.derivative(n) for n in (1, 2, 3)]
+        self._derivatives: list[PPoly | None] = [self.ppoly, None, None, None]  # made when first asked
 
     # -- construction helpers ---------------------------------------------------------------------------------
-    def _spline_runs(self) -> list[list[int]]:
-        runs: list[list[int]] = []
-        for k, kind in enumerate(self.kinds):
-            if kind != SPLINE:
-                continue
-            if runs and runs[-1][-1] == k - 1:
-                runs[-1].append(k)
-            else:
-                runs.append([k])
-        return runs
+    @staticmethod
+    def _spline_runs(spline: np.ndarray) -> list[list[int]]:
+        """Maximal runs of consecutive spline segments (their indices), from the mask of spline segments."""
+        edges = np.diff(np.concatenate([[0], spline.astype(np.int8), [0]]))
+        return [list(range(int(a), int(b))) for a, b in zip(np.nonzero(edges == 1)[0], np.nonzero(edges == -1)[0],
+                                                             strict=True)]
 
     def _is_quintic(self, run: list[int]) -> bool:
         return len(run) == 1 and run[0] - 1 in self.line_slopes and run[0] + 1 in self.line_slopes
@@ -142,9 +161,9 @@ class CurveProfile:
     def _natural_end_slopes(self) -> tuple[float, float]:
         """Slopes at the profile start/end when those ends are left natural (zero curvature)."""
         first, last = self.runs[0], self.runs[-1]
-        s0 = self._run_spline(first, None, None)(self.x[0], 1)
-        s1 = self._run_spline(last, None, None)(self.x[-1], 1)
-        return float(s0), float(s1)
+        spline_first = self._run_spline(first, None, None)
+        spline_last = spline_first if last is first else self._run_spline(last, None, None)  # one run: one solve
+        return float(spline_first(self.x[0], 1)), float(spline_last(self.x[-1], 1))
 
     def _boundary_gradients(self) -> tuple[float | None, float | None]:
         """Gradient imposed on a curved first/last segment by the Type of Curve [DG L3708-3729].
@@ -197,7 +216,10 @@ class CurveProfile:
             xr = np.clip(x - cycles * length, 0.0, length)
         else:
             cycles, xr = np.zeros_like(x), x
-        out = self._derivatives[nu](xr)
+        derivative = self._derivatives[nu]
+        if derivative is None:
+            derivative = self._derivatives[nu] = self.ppoly.derivative(nu)
+        out = derivative(xr)
         if nu == 0:
             out = out + cycles * self.curve.slave_length
         return float(out) if np.ndim(out) == 0 else out
@@ -231,6 +253,8 @@ class CurveProfile:
         points are the real roots of derivative nu+1, found per piece from batched companion matrices grouped by
         the polynomial's actual degree."""
         asc = self.ppoly.c[::-1]  # ascending powers, shape (degree+1, pieces)
+        used = np.flatnonzero(asc.any(axis=1))
+        asc = asc[:used[-1] + 1] if len(used) else asc[:1]  # powers no piece uses (a cubic spline's 4, 5) add 0
         h = np.diff(self.ppoly.x)
         deriv = _derive(asc, nu)
         slope = _derive(deriv, 1)
@@ -268,11 +292,13 @@ def _roots_in(asc: np.ndarray, h: np.ndarray) -> np.ndarray:
             continue
         coeffs = asc[:g + 1, idx]
         monic = coeffs[:g] / coeffs[g]
-        companion = np.zeros((len(idx), g, g))
-        if g > 1:
+        if g == 1:  # the 1×1 companion matrix [-monic] is its own eigenvalue (LAPACK returns it exactly)
+            roots = -monic.T
+        else:
+            companion = np.zeros((len(idx), g, g))
             companion[:, np.arange(1, g), np.arange(g - 1)] = 1.0
-        companion[:, :, -1] = -monic.T
-        roots = np.linalg.eigvals(companion)
+            companion[:, :, -1] = -monic.T
+            roots = np.linalg.eigvals(companion)
         real = roots.real
         ok = (np.abs(roots.imag) <= 1e-9 * (1.0 + np.abs(real))) & (real > 0) & (real < h[idx, None])
         out[idx, :g] = np.where(ok, real, 0.0)
@@ -287,14 +313,18 @@ def _cached_profile(curve: Curve) -> CurveProfile:
 _last: tuple[Curve | None, CurveProfile | None] = (None, None)
 
 
-def profile(curve: Curve) -> CurveProfile:
+def profile(curve: Curve, cache: bool = True, moved_from: tuple[CurveProfile, int] | None = None) -> CurveProfile:
     """The (cached) evaluated profile of a curve.  The same object asked again skips hashing its fix points
-    (the editor asks several times per redraw of a long curve); one tuple swap keeps this thread-safe."""
+    (the editor asks several times per redraw of a long curve); one tuple swap keeps this thread-safe.
+
+    ``cache=False`` is for a curve that is asked about only while it exists, such as each intermediate curve of
+    a fix point drag: it is built without hashing its fix points into the shared cache (a few ms for 10 000
+    points), and remembered only as the last curve asked; ``moved_from`` as for CurveProfile."""
     global _last
     last = _last
     if last[0] is curve:
         return last[1]
-    prof = _cached_profile(curve)
+    prof = _cached_profile(curve) if cache else CurveProfile(curve, moved_from)
     _last = (curve, prof)
     return prof
 

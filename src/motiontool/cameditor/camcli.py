@@ -35,7 +35,8 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     p.add_argument("--master-length", metavar="L", help="master cycle length in MU (default: last point)")
     p.add_argument("--intervals", default="40", metavar="K", help="number of interpolation intervals (default 40)")
     p.add_argument("--point", action="append", default=[], metavar="M,S[,TYPE]",
-                   help="fix point, TYPE C (default), T, CZ or C3; repeat in master order")
+                   help="fix point, TYPE C (default), T, CZ, C3 or a VDI 2143 motion law for the segment ending "
+                        "there: P345, MSIN, CYCL, MTRAP, HARM; repeat in master order")
     p.add_argument("--pair", action="append", default=[], metavar="A,B",
                    help="start/stop pair 1, 2, ... (pair 0, Start = Stop = 0, is always added)")
     p.add_argument("--slave-stop", metavar="P", help="slave stop position")

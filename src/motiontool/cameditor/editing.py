@@ -11,10 +11,12 @@ import dataclasses
 import math
 
 from motiontool.camcurve.model import MAX_USER_PAIRS, Curve, CurveError, FixPoint, StartStopPair, segment_kinds
+from motiontool.camcurve.motionlaws import LAWS
 from motiontool.camcurve.spline import profile
 
-#: Fix point type names of the popup menu [DG L3676].
-TYPE_NAMES = {"C": "Curve", "T": "Tangent", "CZ": "Trapezoid", "C3": "3'rd order"}
+#: Fix point type names of the popup menu [DG L3676]; then the VDI 2143 motion laws (decision C10).
+TYPE_NAMES = {"C": "Curve", "T": "Tangent", "CZ": "Trapezoid", "C3": "3'rd order",
+              **{code: law.name for code, law in LAWS.items()}}
 
 
 def replace(curve: Curve, **changes) -> Curve:
@@ -124,7 +126,17 @@ def move_point(curve: Curve, index: int, master: float, slave: float, snap_on_gr
         if clamp:
             pts[index] = FixPoint(max(master, last_point_minimum(curve)), slave, pts[index].type)
         return with_master_length(curve, tuple(pts))
+    if _plain(master) and _plain(slave) and (index == 0 or pts[index - 1].master < master < pts[index + 1].master):
+        # the curve was valid and one inner point moved between its neighbours, keeping its type: every rule of
+        # Curve.validate still holds, so skip re-checking all points (a drag of a 10 000-point curve)
+        old = curve.fix_points
+        return replace_points_unchecked(curve, old[:index] + (pts[index],) + old[index + 1:])
     return replace(curve, fix_points=tuple(pts))
+
+
+def _plain(value) -> bool:
+    """A finite int or float, as Curve.validate requires of positions."""
+    return type(value) in (int, float) and math.isfinite(value)
 
 
 def add_points(curve: Curve, points: list[tuple[float, float]], snap_on_grid: bool = False) -> Curve:

@@ -14,11 +14,20 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from motiontool.camcurve.layout import CurveArrayError, decode, encode
-from motiontool.camcurve.model import FIX_POINT_TYPES, Curve, CurveError, CurveType, FixPoint, StartStopPair
+from motiontool.camcurve.model import (
+    FIX_POINT_TYPES,
+    LAW_TYPES,
+    Curve,
+    CurveError,
+    CurveType,
+    FixPoint,
+    StartStopPair,
+)
 from motiontool.fileio import atomic_write_text
 from motiontool.paramdb import Parameter, ParameterError, database
 
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2  # 2: fix point types may be motion laws (LAW_TYPES); written only by files that use them
+LAW_FORMAT = 2
 MAGIC = "# motiontool configuration file, format "
 EXTENSIONS = (".zbc", ".cnf")
 VALUES_PER_LINE = 16
@@ -150,7 +159,8 @@ def config_text(config: ConfigFile) -> str:
         params.append((param, value))
     for param, value in sorted(params, key=lambda pv: pv[0].index):
         sections[parameter_section(param)].append(f"{param.label} = {_param_value(param, value)}")
-    out = [f"{MAGIC}{FORMAT_VERSION}", "# see docs/formats/zbc.md", ""]
+    uses_laws = any(p.type in LAW_TYPES for c in config.curves for p in c.fix_points)
+    out = [f"{MAGIC}{LAW_FORMAT if uses_laws else 1}", "# see docs/formats/zbc.md", ""]
     for name in PARAMETER_SECTIONS:
         out.append(f"[{name}]")
         out.extend(sections[name])
@@ -244,6 +254,7 @@ class _Reader:
         self.arrays: list[_ArraySection] = []
         self.curves: list[_CurveSection] = []
         self.seen_sections: set[str] = set()
+        self.version = 1
 
     def error(self, message: str, line: int) -> ConfigError:
         return ConfigError(message, line, self.source)
@@ -304,6 +315,7 @@ class _Reader:
                              "update motiontool", 1)
         if int(version) < 1:
             raise self.error(f"unknown format version {version}", 1)
+        self.version = int(version)
 
     def _open_section(self, inner: str, number: int) -> tuple[str, _ArraySection | _CurveSection | None]:
         if inner in (*PARAMETER_SECTIONS, "end"):
@@ -432,6 +444,9 @@ class _Reader:
             if parts[2] not in FIX_POINT_TYPES:
                 raise self.error(f"curve {name}: fix point type {parts[2]!r} is not one of "
                                  f"{', '.join(FIX_POINT_TYPES)}", line)
+            if parts[2] in LAW_TYPES and self.version < LAW_FORMAT:
+                raise self.error(f"curve {name}: fix point type {parts[2]} (a motion law) needs format "
+                                 f"{LAW_FORMAT}, the file says format {self.version}", line)
             points.append(FixPoint(_parse_number(parts[0], line, f"curve {name}: point master"),
                                    _parse_number(parts[1], line, f"curve {name}: point slave"), parts[2]))
         pairs = []

@@ -137,6 +137,12 @@ class CurveDataCard(QWidget):
             field.show_value(fmt(getattr(curve, name)))
 
 
+#: text as wide as a Curve Info value usually is (the labels keep this room, see CurveInfoCard; a longer value
+#: shows in full as the label's tool tip)
+_ROOM = {"max_velocity": "9.9999e-07 UU/MU²   (999.9 %)",
+         "physical": "master 99999 MU/s, slave max 99999 UU/s, 99999 UU/s²"}
+
+
 class CurveInfoCard(QWidget):
     """Curve Info [DG L3797-3839]: cycles/min, maxima against the slave limits, interval size and time."""
 
@@ -155,30 +161,46 @@ class CurveInfoCard(QWidget):
                           ("interval_size", "Interval Size:"), ("interval_time", "Interval Time (ms):")):
             label = QLabel()
             label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
+            # values change on every mouse move of a drag: a fixed room, wide enough for typical values, keeps
+            # a new value from laying out the window again (and resizing the diagram)
+            label.setFixedSize(label.fontMetrics().horizontalAdvance(_ROOM.get(key, _ROOM["max_velocity"])),
+                               label.sizeHint().height())
             self.labels[key] = label
             form.addRow(text, label)
 
     def show_info(self, curve: Curve, info: CurveInfo, limits: SlaveLimits) -> None:
-        self.cycles.show_value(fmt(curve.cycles_per_min))
+        """Show the values; called on every mouse move of a drag, so only what changed is touched (a new style
+        sheet re-polishes the label)."""
+        cycles = fmt(curve.cycles_per_min)
+        if self.cycles.text() != cycles or self.cycles._shown != cycles:
+            self.cycles.show_value(cycles)
         v_pct, a_pct = percent(info.max_velocity, limits.velocity), percent(info.max_acceleration, limits.acceleration)
         for key, value, pct, unit in (("max_velocity", info.max_velocity, v_pct, "UU/MU"),
                                       ("max_acceleration", info.max_acceleration, a_pct, "UU/MU²")):
-            label = self.labels[key]
-            label.setText(f"{fmt(value, 5)} {unit}   ({fmt(round(pct, 1))} %)")
-            label.setStyleSheet(OVER_LIMIT if pct > 100 else "")  # red above the limit [DG L3809, L3821]
-        self.labels["velocity_limit"].setText(f"{fmt(limits.velocity, 5)} UU/MU")
-        self.labels["acceleration_limit"].setText(f"{fmt(limits.acceleration, 5)} UU/MU²")
-        self.labels["max_jerk"].setText(f"{fmt(info.max_jerk, 5)} UU/MU³")
-        self.labels["physical"].setText(
-            f"master {fmt(info.master_velocity, 5)} MU/s, slave max {fmt(info.max_velocity_per_s, 5)} UU/s, "
-            f"{fmt(info.max_acceleration_per_s2, 5)} UU/s²")
-        self.labels["interval_size"].setText(f"{fmt(info.interval_size)} MU")
-        time = self.labels["interval_time"]
-        time.setText(fmt(round(info.interval_time_ms, 1)) if curve.interpolation else "- (no interpolation)")
+            # red above the limit [DG L3809, L3821]
+            self._show(key, f"{fmt(value, 5)} {unit}   ({fmt(round(pct, 1))} %)", OVER_LIMIT if pct > 100 else "")
+        self._show("velocity_limit", f"{fmt(limits.velocity, 5)} UU/MU")
+        self._show("acceleration_limit", f"{fmt(limits.acceleration, 5)} UU/MU²")
+        self._show("max_jerk", f"{fmt(info.max_jerk, 5)} UU/MU³")
+        self._show("physical", f"master {fmt(info.master_velocity, 5)} MU/s, slave max "
+                               f"{fmt(info.max_velocity_per_s, 5)} UU/s, {fmt(info.max_acceleration_per_s2, 5)} UU/s²")
+        self._show("interval_size", f"{fmt(info.interval_size)} MU")
         # "This time should not be smaller than 30 milliseconds" [DG L3837]
         short = curve.interpolation and info.interval_time_ms < 20
-        time.setStyleSheet(OVER_LIMIT if short else "")
-        time.setToolTip("shorter than 20-30 ms: use fewer intervals" if short else "30 to 100 ms are suitable")
+        self._show("interval_time", fmt(round(info.interval_time_ms, 1)) if curve.interpolation
+                   else "- (no interpolation)", OVER_LIMIT if short else "")
+        tip = "shorter than 20-30 ms: use fewer intervals" if short else "30 to 100 ms are suitable"
+        if self.labels["interval_time"].toolTip() != tip:
+            self.labels["interval_time"].setToolTip(tip)
+
+    def _show(self, key: str, text: str, style: str | None = None) -> None:
+        label = self.labels[key]
+        if label.text() != text:
+            label.setText(text)
+            if key != "interval_time":  # that one's tool tip is advice
+                label.setToolTip(text if label.fontMetrics().horizontalAdvance(text) > label.width() else "")
+        if style is not None and label.styleSheet() != style:
+            label.setStyleSheet(style)
 
 
 class ParameterCard(QWidget):

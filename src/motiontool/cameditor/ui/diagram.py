@@ -13,9 +13,11 @@ from dataclasses import dataclass
 import numpy as np
 import pyqtgraph as pg
 from PySide6.QtCore import QPointF, QRectF, Qt, Signal
+from PySide6.QtWidgets import QGraphicsItem
 
 from motiontool.camcurve.model import LINE, Curve
 from motiontool.camcurve.spline import disengage_path, engage_path, profile
+from motiontool.cameditor.ui.drawing import ScreenCurve, show_one, thin
 
 # colours of the manual [DG L3599-3600, L3890-3938]
 RED, GREEN = (210, 30, 30), (0, 150, 0)
@@ -69,6 +71,11 @@ class CurveViewBox(pg.ViewBox):
         self.hovered = -1
         self._dragging: int | None = None
         self.setMouseMode(pg.ViewBox.RectMode)
+
+    @property
+    def dragged_point(self) -> int | None:
+        """The fix point being dragged, if any."""
+        return self._dragging
 
     # -- hit test -------------------------------------------------------------------------------------------------
     def point_at(self, scene_pos: QPointF) -> int:
@@ -183,9 +190,11 @@ class CurveDiagram(pg.PlotWidget):
             self.side[name] = vb
         plot.getAxis("right").setZValue(1)
         self.box.sigResized.connect(self._sync_side)
+        self.box.sigResized.connect(lambda *_: self._draw())
+        self.box.sigXRangeChanged.connect(lambda *_: self._draw())
         # base items
-        self.red = pg.PlotDataItem(pen=pg.mkPen(RED, width=2), connect="finite")
-        self.green = pg.PlotDataItem(pen=pg.mkPen(GREEN, width=2.5), connect="finite")
+        self.red = ScreenCurve(pen=pg.mkPen(RED, width=2))
+        self.green = ScreenCurve(pen=pg.mkPen(GREEN, width=2.5))
         # tangent points green, all others red [DG L3599]; one brush per item keeps 10 000 points fast
         self.points = pg.ScatterPlotItem(size=MARKER_SIZE, symbol="s", pen=pg.mkPen(20, 20, 20, 200),
                                          brush=pg.mkBrush(RED))
@@ -193,6 +202,9 @@ class CurveDiagram(pg.PlotWidget):
                                            brush=pg.mkBrush(GREEN))
         self.hover = pg.ScatterPlotItem(size=MARKER_SIZE + 8, symbol="s", pen=pg.mkPen(0, 0, 0, width=2),
                                         brush=None)
+        # the point being dragged, drawn on its own while the others stay put (and cached as a picture)
+        self.drag_marker = pg.ScatterPlotItem(size=MARKER_SIZE, symbol="s", pen=pg.mkPen(20, 20, 20, 200))
+        self._drag_point: int | None = None
         self.slave_stop_line = pg.InfiniteLine(angle=0, movable=False, pen=pg.mkPen(GREY, width=5))
         self.engage_item = pg.PlotDataItem(pen=pg.mkPen(DARK_BLUE, width=2))
         self.disengage_item = pg.PlotDataItem(pen=pg.mkPen(DARK_BLUE, width=2, style=Qt.PenStyle.DashLine))
@@ -209,12 +221,27 @@ class CurveDiagram(pg.PlotWidget):
             item.setZValue(-10)
         for item in (self.master_band, self.slave_band, *self.correction_bars, self.slave_stop_line,
                      self.master_marker_line, self.slave_marker_line, self.red, self.green, self.engage_item,
-                     self.disengage_item, self.hover, self.points, self.t_points):
+                     self.disengage_item, self.hover, self.points, self.t_points, self.drag_marker):
             plot.addItem(item)
+        # axes with their grid, the title and the markers of up to 10 000 fix points change only with the view
+        # or the points, the hover and drag markers only move: Qt keeps them as pictures, so a drag repaints
+        # just the curves
+        for item in (plot.getAxis("left"), plot.getAxis("bottom"), plot.getAxis("right"), plot.titleLabel.item,
+                     self.points, self.t_points, self.hover, self.drag_marker):
+            item.setCacheMode(QGraphicsItem.CacheMode.DeviceCoordinateCache)
+        # pyqtgraph tells the items under the mouse about every move, also while a fix point is dragged, when no
+        # item may take the hover; skip that then (it asks every item for its shape on every move)
+        scene, send_hover = self.scene(), self.scene().sendHoverEvents
+
+        def send_hover_unless_dragging(ev, exitOnly=False):  # noqa: N803 - pyqtgraph's signature
+            if exitOnly or self.box.dragged_point is None:
+                send_hover(ev, exitOnly)
+
+        scene.sendHoverEvents = send_hover_unless_dragging
         self.flags: list[pg.GraphicsObject] = []
-        self.side_items = {"velocity": pg.PlotDataItem(pen=pg.mkPen(BLUE, width=1.5)),
-                           "acceleration": pg.PlotDataItem(pen=pg.mkPen(MAGENTA, width=1.5)),
-                           "jerk": pg.PlotDataItem(pen=pg.mkPen(CYAN, width=1.5))}
+        self.side_items = {"velocity": ScreenCurve(pen=pg.mkPen(BLUE, width=1.5)),
+                           "acceleration": ScreenCurve(pen=pg.mkPen(MAGENTA, width=1.5)),
+                           "jerk": ScreenCurve(pen=pg.mkPen(CYAN, width=1.5))}
         self.limit_lines = {name: [pg.InfiniteLine(angle=0, movable=False,
                                                    pen=pg.mkPen(color, width=1.5, style=Qt.PenStyle.DashLine))
                                    for _ in range(2)]
@@ -223,9 +250,15 @@ class CurveDiagram(pg.PlotWidget):
             self.side[name].addItem(item)
             for line in self.limit_lines.get(name, []):
                 self.side[name].addItem(line)
+        # the exact samples (tables, limits and Zoom Reset use these); the items draw what the view shows of them
         self.samples_x = np.zeros(0)
         self.tangent = np.zeros(0, dtype=bool)
         self.samples_y = np.zeros(0)
+        self.layers: dict[ScreenCurve, np.ndarray] = {}  # item → its y samples over samples_x (NaN: gap)
+        self._drawn_for: tuple | None = None
+        self._title: str | None = None  # setTitle("") keeps the title row, as for a curve
+        self._shown_side: list[str] | None = None
+        self._flag_key: tuple | None = None
 
     def _sync_side(self) -> None:
         for vb in self.side.values():
@@ -235,82 +268,131 @@ class CurveDiagram(pg.PlotWidget):
     # -- drawing ----------------------------------------------------------------------------------------------------
     def clear_curve(self) -> None:
         self.curve = None
-        for item in (self.red, self.green, self.points, self.t_points, self.hover, *self.side_items.values()):
+        self.samples_x = self.samples_y = np.zeros(0)
+        self.layers = {}
+        self._drawn_for = None
+        for item in (self.red, self.green, self.points, self.t_points, *self.side_items.values()):
             item.setData([], [])
+        show_one(self.hover, None)
+        show_one(self.drag_marker, None)
+        self._drag_point = None
         self.box.points = np.zeros((0, 2))
         self.tangent = np.zeros(0, dtype=bool)
-        self.getPlotItem().setTitle("")
+        self._set_title("")
         for item in (self.engage_item, self.disengage_item):
             item.setData([], [])
         self._show_overlays(None)
 
-    def show_curve(self, curve: Curve, overlay: Overlay) -> None:
-        """Recompute the samples and redraw everything (the editor's "recalc")."""
+    def show_curve(self, curve: Curve, overlay: Overlay, dragging: bool = False) -> None:
+        """Recompute the samples and redraw everything (the editor's "recalc").
+
+        ``dragging``: one fix point of the shown curve moves (Continuous Recalc).  The samples are the same as
+        for a full recalc; the fix point types are unchanged and the right axis keeps its scale until the
+        release (no autorange while the mouse moves)."""
+        same_frame = (dragging and self.curve is not None and overlay == self.overlay
+                      and curve.master_length == self.curve.master_length)
         self.curve, self.overlay = curve, overlay
         prof = profile(curve)
-        xs = np.sort(np.concatenate([np.linspace(0.0, curve.master_length, SAMPLES),
-                                     [p.master for p in curve.fix_points]]))
+        xs = np.sort(np.concatenate([np.linspace(0.0, curve.master_length, SAMPLES), prof.x]))
         xs = xs[np.concatenate([[True], np.diff(xs) > 0])]  # sorted, without repeats
         ys = prof.slave(xs, periodic=False)
         self.samples_x, self.samples_y = xs, ys
-        green, red = self._straight_masks(curve, prof, xs)
-        self.red.setData(xs, np.where(red, ys, np.nan))
-        self.green.setData(xs, np.where(green, ys, np.nan))
-        self.getPlotItem().setTitle(f"<b>{curve.name}</b>", color=(30, 30, 30), size="11pt")
-        self._set_points(curve)
+        green, red = self._straight_masks(prof, xs)
+        self.layers = {self.red: np.where(red, ys, np.nan), self.green: np.where(green, ys, np.nan)}
+        self._set_title(f"<b>{curve.name}</b>")
+        self._set_points(curve, prof, same_types=dragging)
         shown = [n for n in ("velocity", "acceleration", "jerk") if getattr(overlay, n)]
         for nu, name in enumerate(("velocity", "acceleration", "jerk"), start=1):
-            item = self.side_items[name]
             if name in shown:
-                item.setData(xs, prof._eval(xs, nu, False))
+                self.layers[self.side_items[name]] = prof._eval(xs, nu, False)
             else:
-                item.setData([], [])
-        self._show_overlays(curve)
-        self._right_axis(shown)
+                self.side_items[name].setData([], [])
+        self._drawn_for = None
+        self._draw()
+        if same_frame:  # markers, limits and bars stay; the start/stop flags and paths follow the curve
+            self._show_flags(curve)
+            self._show_paths(curve)
+        else:
+            self._show_overlays(curve)
+        self._right_axis(shown, fit=not dragging)
 
-    def _straight_masks(self, curve: Curve, prof, xs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def _set_title(self, title: str) -> None:
+        if title != self._title:  # a new title lays the plot out again
+            self._title = title
+            self.getPlotItem().setTitle(title, color=(30, 30, 30), size="11pt")
+
+    def _view_columns(self) -> tuple[float, float, int] | None:
+        """The master range in view and its width in pixels; None while the view follows the data (auto range)."""
+        if not len(self.samples_x) or self.box.autoRangeEnabled()[0]:
+            return None
+        (x0, x1), _ = self.box.viewRange()
+        return float(x0), float(x1), max(1, int(round(self.box.boundingRect().width())))
+
+    def _draw(self) -> None:
+        """Hand the samples to the curve items as the view shows them (see ``thin``).  Called after a recalc and
+        whenever the master range in view or the diagram's width changes."""
+        view = self._view_columns()
+        if self._drawn_for == (view, len(self.samples_x)):
+            return
+        self._drawn_for = (view, len(self.samples_x))
+        for item, ys in self.layers.items():
+            if not np.isfinite(ys).any():  # e.g. no straight segment: nothing green
+                if item.xData is not None and len(item.xData):
+                    item.setData([], [])
+                continue
+            item.setData(*thin(self.samples_x, ys, view))
+
+    def _straight_masks(self, prof, xs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Samples drawn green (straight segments: built as tangent sections, or happening to be straight
         [DG L3600]) and red; a sample on a joint belongs to both neighbours so the colours meet."""
-        xp = np.array([p.master for p in curve.fix_points])
-        yp = np.array([p.slave for p in curve.fix_points])
-        seg = np.clip(np.searchsorted(xp, xs, side="right") - 1, 0, len(xp) - 2)
+        xp, yp = prof.x, prof.y
+        below = np.searchsorted(xp, xs, side="right") - 1  # the last fix point at or before each sample
+        seg = np.clip(below, 0, len(xp) - 2)
         acc = np.abs(prof.acceleration(xs, periodic=False))
         peak = np.zeros(len(xp) - 1)
         np.maximum.at(peak, seg, acc)
-        at_point = _members(xs, xp)
+        at_point = xs == xp[below]  # the sample is a fix point (xs starts at xp[0])
         np.maximum.at(peak, np.clip(seg - 1, 0, None)[at_point], acc[at_point])
         flat = peak * np.diff(xp) ** 2 <= 1e-7 * np.maximum(1.0, np.abs(np.diff(yp)))
-        straight = flat | (np.array(prof.kinds) == LINE)
+        line = np.zeros(len(prof.kinds), dtype=bool)
+        if LINE in prof.kinds:
+            line[[k for k, kind in enumerate(prof.kinds) if kind == LINE]] = True
+        straight = flat | line
         joint = at_point & (xs > xp[0]) & (xs < xp[-1])
         before = np.clip(seg - 1, 0, None)
         green = straight[seg] | (joint & straight[before])
         red = ~straight[seg] | (joint & ~straight[before])
         return green, red
 
-    def _set_points(self, curve: Curve) -> None:
-        pts = np.array([[p.master, p.slave] for p in curve.fix_points], dtype=float)
-        tangent = np.array([p.type == "T" for p in curve.fix_points])
-        self._place_points(pts, tangent)
+    def _set_points(self, curve: Curve, prof, same_types: bool = False) -> None:
+        pts = np.column_stack([prof.x, prof.y])
+        if same_types and len(self.tangent) == len(pts):
+            tangent = self.tangent  # a drag moves a point, its type stays
+        else:
+            tangent = np.array([p.type == "T" for p in curve.fix_points], dtype=bool)
+        self._place_points(pts, tangent, dragging=same_types)
         self.set_hover(self.box.hovered)
 
-    def _place_points(self, pts: np.ndarray, tangent: np.ndarray) -> None:
-        """Draw the fix points; a drag moves one point, which is updated in place (10 000 points stay fast)."""
+    def _place_points(self, pts: np.ndarray, tangent: np.ndarray, dragging: bool = False) -> None:
+        """Draw the fix points.  While a point is dragged (``dragging``: only it moves), the others keep their
+        picture and the dragged one is drawn by ``drag_marker``, so 10 000 markers are not redrawn per move."""
         old, old_tangent = self.box.points, self.tangent
         self.box.points, self.tangent = pts, tangent
-        if old.shape == pts.shape and np.array_equal(old_tangent, tangent):
+        if dragging and old.shape == pts.shape and np.array_equal(old_tangent, tangent):
             moved = np.nonzero((old != pts).any(axis=1))[0]
-            if len(moved) == 0:
+            j = int(moved[0]) if len(moved) == 1 else self._drag_point if len(moved) == 0 else None
+            if j is not None and self._drag_point in (None, j):
+                if self._drag_point is None:
+                    self._drag_point = j
+                    item = self.t_points if tangent[j] else self.points
+                    visible = np.ones(len(item.data), dtype=bool)
+                    visible[int(np.count_nonzero(tangent[:j] == tangent[j]))] = False
+                    item.setPointsVisible(visible)
+                    self.drag_marker.setData([0.0], [0.0], brush=pg.mkBrush(GREEN if tangent[j] else RED))
+                self.drag_marker.setPos(pts[j, 0], pts[j, 1])
                 return
-            if len(moved) == 1:
-                j = int(moved[0])
-                item = self.t_points if tangent[j] else self.points
-                k = int(np.count_nonzero(tangent[:j] == tangent[j]))
-                item.data["x"][k], item.data["y"][k] = pts[j]
-                item.bounds = [None, None]
-                item.prepareGeometryChange()
-                item.informViewBoundsChanged()
-                item.invalidate()
-                return
+        self._drag_point = None
+        show_one(self.drag_marker, None)
         self.points.setData(pts[~tangent, 0], pts[~tangent, 1])
         self.t_points.setData(pts[tangent, 0], pts[tangent, 1])
 
@@ -319,18 +401,19 @@ class CurveDiagram(pg.PlotWidget):
         pts = self.box.points.copy()
         if 0 <= index < len(pts):
             pts[index] = (master, slave)
-            self._place_points(pts, self.tangent)
+            self._place_points(pts, self.tangent, dragging=True)
             self.set_hover(index)
 
     def set_hover(self, index: int) -> None:
         pts = self.box.points
-        if 0 <= index < len(pts):
-            self.hover.setData([pts[index, 0]], [pts[index, 1]])
-        else:
-            self.hover.setData([], [])
+        show_one(self.hover, pts[index] if 0 <= index < len(pts) else None)
 
-    def _right_axis(self, shown: list[str]) -> None:
-        """The right axis belongs to velocity, acceleration or jerk when exactly one is shown [DG L3892]."""
+    def _right_axis(self, shown: list[str], fit: bool = True) -> None:
+        """The right axis belongs to velocity, acceleration or jerk when exactly one is shown [DG L3892].
+        ``fit`` scales the right-axis quantities to their curves (not while a point is dragged)."""
+        if not fit and shown == self._shown_side:
+            return
+        self._shown_side = list(shown)
         plot = self.getPlotItem()
         if len(shown) == 1:
             name = shown[0]
@@ -351,7 +434,7 @@ class CurveDiagram(pg.PlotWidget):
         """Scale each right-axis quantity to its curve and its limit lines."""
         ov = self.overlay
         for name, vb in self.side.items():
-            data = self.side_items[name].yData
+            data = self.layers.get(self.side_items[name])
             values = list(data[np.isfinite(data)]) if data is not None and len(data) else []
             limit = {"velocity": ov.velocity_limit_value if ov.velocity_limit else None,
                      "acceleration": ov.acceleration_limit_value if ov.acceleration_limit else None}.get(name)
@@ -395,10 +478,19 @@ class CurveDiagram(pg.PlotWidget):
         """Start-Stop: "a" with a yellow arrow at Start, "b" with a red arrow at Stop; the selected pair's flags
         are red [DG L4030]."""
         plot = self.getPlotItem()
+        key = (curve.start_stop_pairs, self.overlay.selected_pair) if curve is not None and self.overlay.start_stop \
+            else None
+        if key is not None and key == self._flag_key:  # the same flags: they follow the curve (a drag)
+            prof = profile(curve)
+            for item in self.flags:
+                x = item.pos().x()
+                item.setPos(x, float(prof.slave(x, periodic=False)))
+            return
+        self._flag_key = key
         for item in self.flags:
             plot.removeItem(item)
         self.flags = []
-        if curve is None or not self.overlay.start_stop:
+        if key is None:
             return
         prof = profile(curve)
         for k, pair in enumerate(curve.start_stop_pairs):
@@ -426,7 +518,7 @@ class CurveDiagram(pg.PlotWidget):
             if usable and shown:
                 xs, ys = fn(curve, k, points=PATH_SAMPLES)  # smooth on screen; the array keeps its grid
                 item.setData(xs, ys)
-            else:
+            elif item.xData is not None and len(item.xData):
                 item.setData([], [])
 
     # -- view ---------------------------------------------------------------------------------------------------
@@ -454,12 +546,6 @@ class CurveDiagram(pg.PlotWidget):
     def zoom(self, factor: float) -> None:
         """Zoom In (0.5) keeps the central part; Zoom Out (2) [DG L3570-3571]."""
         self.box.scaleBy((factor, factor))
-
-
-def _members(values: np.ndarray, sorted_set: np.ndarray) -> np.ndarray:
-    """values that occur in sorted_set (np.isin without its hashing, for sorted data)."""
-    idx = np.clip(np.searchsorted(sorted_set, values), 0, len(sorted_set) - 1)
-    return sorted_set[idx] == values
 
 
 def correction_regions(curve: Curve) -> list[tuple[float, float]]:

@@ -4,16 +4,18 @@
 from __future__ import annotations
 
 import math
+import time
 
 from PySide6.QtWidgets import QMenu
 
-from motiontool.camcurve.model import Curve, CurveError, CurveType
-from motiontool.camcurve.spline import curve_info
+from motiontool.camcurve.model import LAW_TYPES, Curve, CurveError, CurveType
+from motiontool.camcurve.spline import curve_info, profile
 from motiontool.cameditor import editing
 from motiontool.cameditor.limits import marker_detection, parameter, slave_limits
 from motiontool.cameditor.ui.diagram import Overlay
 from motiontool.paramdb import ParameterError, database
 
+FOLLOW_INTERVAL = 0.05  # s: the table row and Curve Info follow a drag at up to 20 updates per second
 _TEXT_FIELDS = {"name"}
 _INT_FIELDS = {"curve_type"}
 
@@ -24,6 +26,14 @@ def parse_number(text: str) -> int | float:
     if not math.isfinite(value):
         raise ValueError(f"{text!r} is not a finite number")
     return int(value) if value.is_integer() else value
+
+
+def _same_drag_state(shown: Curve, moved: Curve, index: int) -> bool:
+    """A drag's curves all come from the curve at the drag start with only point ``index`` (and, for the last
+    point, the master length) changed, so comparing those tells whether the shown curve is already ``moved``."""
+    return shown is moved or (len(shown.fix_points) == len(moved.fix_points) and shown.fix_points[index] ==
+                              moved.fix_points[index] and shown.master_length == moved.master_length
+                              and shown.intervals == moved.intervals)
 
 
 class EditsMixin:
@@ -143,16 +153,52 @@ class EditsMixin:
         if finished:
             self._drag_start = None
             slot.curve = start
-            self.set_curve(moved, "Move point")
+            self._follow = self._drag_overlay = None  # the release shows the final curve everywhere
+            if moved == start:  # back where it started: no undo step; show the curve as it is again
+                self._redraw()
+                self.fix_table.model.update_row(index, start)
+            else:
+                self.set_curve(moved, "Move point")
             return
         p = moved.fix_points[index]
         if self.options["continuous_recalc"]:
-            slot.curve = moved
-            self.diagram.show_curve(moved, self.overlay())
-            self.curve_info.show_info(moved, curve_info(moved), slave_limits(moved, self.parameters))
+            shown, slot.curve = slot.curve, moved
+            if _same_drag_state(shown, moved, index):
+                return  # the mouse moved within the same position (or the move was refused): nothing changes
+            # a drag's curve is asked about only now: built once, without hashing its points into the shared
+            # cache, taking the segment kinds over from the shown curve (only point ``index`` moved)
+            profile(moved, cache=False, moved_from=(profile(shown), index))
+            if self._drag_overlay is None or self._drag_overlay[0] != moved.master_length:
+                self._drag_overlay = (moved.master_length, self.overlay())  # options cannot change mid-drag
+            self.diagram.show_curve(moved, self._drag_overlay[1], dragging=True)
         else:
             self.diagram.move_marker(index, p.master, p.slave)
-        self.fix_table.model.update_row(index, moved)
+        self._drag_follow(moved, index, info=self.options["continuous_recalc"])
+
+    def _drag_follow(self, curve: Curve, row: int, info: bool) -> None:
+        """The dragged point's table row and, with Continuous Recalc, Curve Info follow a drag [DG L3644-3646],
+        at up to 1 / FOLLOW_INTERVAL updates per second (the diagram follows every move; the last state of a
+        pause follows by timer).  Curve Info is computed only while its card is shown (``show_follow`` catches
+        up when it is brought to the front); the release shows the final curve everywhere."""
+        self._follow = (curve, row, info)
+        wait = self._follow_next - time.monotonic()
+        if wait <= 0:
+            self.show_follow()
+        elif not self._follow_timer.isActive():
+            self._follow_timer.start(max(1, math.ceil(wait * 1000)))
+
+    def show_follow(self) -> None:
+        """Show a drag's latest state in the table row and Curve Info (see _drag_follow)."""
+        if self._follow is None:
+            return
+        curve, row, info = self._follow
+        self.fix_table.model.update_row(row, curve)
+        if info and self.cards.currentWidget() is self.curve_info and curve is self.curve():
+            self.curve_info.show_info(curve, curve_info(curve), slave_limits(curve, self.parameters))
+            self._follow = None
+        elif not info:
+            self._follow = None
+        self._follow_next = time.monotonic() + FOLLOW_INTERVAL
 
     def _double_clicked(self, master: float, slave: float) -> None:
         self.edit("Add point", editing.add_points, [(master, round(slave))],
@@ -167,12 +213,14 @@ class EditsMixin:
         snap = self.options["snap_on_grid"]
         if index >= 0:
             current = self.curve().fix_points[index].type
+            laws = QMenu("Motion law (VDI 2143)", menu)  # beyond the manual: decision C10
             for code, name in editing.TYPE_NAMES.items():
-                action = menu.addAction(name)
+                action = (laws if code in LAW_TYPES else menu).addAction(name)
                 action.setCheckable(True)
                 action.setChecked(code == current)
                 action.triggered.connect(lambda _c=False, t=code: self.edit("Change type", editing.change_type,
                                                                             index, t))
+            menu.addMenu(laws)
             menu.addSeparator()
             menu.addAction("Delete").triggered.connect(lambda: self.edit("Delete point", editing.delete_point, index))
             menu.addAction("Snap on Grid").triggered.connect(lambda: self.edit("Snap point", editing.snap_point,

@@ -21,7 +21,8 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from motiontool.camcurve.model import FIX_POINT_TYPES, Curve
+from motiontool.camcurve.model import FIX_POINT_TYPES, LAW_TYPES, Curve
+from motiontool.camcurve.motionlaws import LAWS
 
 TANGENT_ROW = QColor(225, 245, 225)
 _ROOT = QModelIndex()
@@ -45,9 +46,10 @@ class FixPointModel(QAbstractTableModel):
         self.endResetModel()
 
     def update_row(self, row: int, curve: Curve) -> None:
-        """A drag moved one point: refresh that row only (keeps the selection)."""
+        """A drag moved one point: refresh that row only (keeps the selection).  Not the Point column, which does
+        not change: it is sized to its contents, and a change there would measure a thousand rows each time."""
         self.curve = curve
-        self.dataChanged.emit(self.index(row, 0), self.index(row, 3))
+        self.dataChanged.emit(self.index(row, 1), self.index(row, 3))
 
     def rowCount(self, parent=_ROOT) -> int:  # noqa: N802 - Qt override
         return 0 if self.curve is None or parent.isValid() else len(self.curve.fix_points)
@@ -74,6 +76,8 @@ class FixPointModel(QAbstractTableModel):
             return QBrush(TANGENT_ROW)
         if role == Qt.ItemDataRole.ForegroundRole and col == 3:
             return QBrush(QColor(0, 120, 0) if p.type == "T" else QColor(180, 20, 20))
+        if role == Qt.ItemDataRole.ToolTipRole and col == 3 and p.type in LAW_TYPES:  # decision C10
+            return f"{LAWS[p.type].name} (VDI 2143) from the previous point to this one"
         return None
 
     def flags(self, index: QModelIndex):

@@ -7,7 +7,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from pathlib import Path
 
-from PySide6.QtCore import Qt
+from PySide6.QtCore import Qt, QTimer
 from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import (
     QComboBox,
@@ -40,6 +40,7 @@ from motiontool.cameditor.ui.cards import (
 from motiontool.cameditor.ui.diagram import CurveDiagram
 from motiontool.cameditor.ui.edits import EditsMixin
 from motiontool.cameditor.ui.tables import FixPointTable, StartStopTable
+from motiontool.cameditor.ui.trace import TraceOverlay
 from motiontool.cameditor.zbc import EXTENSIONS, ArrayEntry, ConfigError, ConfigFile, read_config, write_config
 from motiontool.comms.link import Link
 from motiontool.comms.protocol import LinkError
@@ -73,8 +74,15 @@ class CamEditor(EditsMixin, QMainWindow):
         self.dialog = None  # the open non-blocking dialog, if any
         self.context_menu = None
         self._drag_start: Curve | None = None
+        self._drag_overlay = None  # (master length, Overlay) during a drag
+        self._follow: tuple[Curve, int, bool] | None = None  # a drag's state the table / Curve Info lag behind
+        self._follow_next = 0.0  # monotonic time of their next update
+        self._follow_timer = QTimer(self)
+        self._follow_timer.setSingleShot(True)
+        self._follow_timer.timeout.connect(self.show_follow)
         self.resize(1400, 900)
         self._build_panes()
+        self.trace_overlay = TraceOverlay(self)  # measured trace over the curve (decision C14)
         self._build_toolbar()
         self._connect()
         self.refresh()
@@ -153,6 +161,10 @@ class CamEditor(EditsMixin, QMainWindow):
             "import": self._action("Import", self.import_dialog, tip="Import a .dat curve (replaces the selected "
                                                                      "curve)"),
             "export": self._action("Export", self.export_dialog, tip="Export the selected curve as .dat"),
+            "trace": self._action("Trace…", self.trace_overlay.load_dialog,
+                                  tip="Overlay a measured trace (motiontool run --trace CSV or oscilloscope CSV "
+                                      "export): slave over master, modulo the master cycle"),
+            "clear_trace": self._action("Clear trace", self.trace_overlay.clear, tip="Remove the measured trace"),
             "add": self._action("Add CAM array", self.add_array_dialog),
             "delete": self._action("Delete array", self.delete_array, sp.SP_TrashIcon),
         }
@@ -166,7 +178,8 @@ class CamEditor(EditsMixin, QMainWindow):
         self.length_field.setMaximumWidth(60)
         self.length_field.setToolTip("Minimum array length: the DIM size the program needs")
         groups = (("new", "open", "save", "save_as"), None, ("zoom_reset", "zoom_in", "zoom_out", "reset_splitters"),
-                  ("undo", "redo", "snap_all"), ("read", "write", "import", "export"), ("add", "delete"))
+                  ("undo", "redo", "snap_all"), ("read", "write", "import", "export"), ("trace", "clear_trace"),
+                  ("add", "delete"))
         for group in groups:
             if group is None:
                 bar.addWidget(QLabel(" Array: "))
@@ -187,6 +200,7 @@ class CamEditor(EditsMixin, QMainWindow):
         box.context_requested.connect(self._context_menu)
         box.user_zoomed.connect(lambda: self.options.boxes["auto_scale"].setChecked(False))
         self.options.changed.connect(self._options_changed)
+        self.cards.currentChanged.connect(lambda _i: self.show_follow())
         self.fix_table.model.edit_requested.connect(self._fix_point_edited, Qt.ConnectionType.QueuedConnection)
         self.fix_table.view.delete_requested.connect(lambda row: self.edit("Delete point", editing.delete_point, row))
         self.fix_table.add_clicked.connect(self.add_points_dialog)
@@ -201,6 +215,10 @@ class CamEditor(EditsMixin, QMainWindow):
         self.curve_info.cycles_edited.connect(lambda text: self._curve_field_edited("cycles_per_min", text))
         for card in (self.sync_card, self.marker_card, self.encoder_card):
             card.parameter_edited.connect(self._parameter_edited)
+
+    def _redraw(self, zoom: bool = False) -> None:
+        super()._redraw(zoom)
+        self.trace_overlay.show(self.curve())  # re-wrapped onto the shown curve's master cycle
 
     # -- state -----------------------------------------------------------------------------------------------------
     def slot(self) -> Slot | None:

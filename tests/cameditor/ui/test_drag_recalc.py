@@ -1,0 +1,127 @@
+"""Issue 6: dragging a fix point of a long curve with Continuous Recalc [DG L3642-3650] is recomputed and redrawn
+within a frame (benchmarks/cam_recalc.py).  The shortcuts that make this possible change no result: at the fix points
+(and every other sample) the drag's curve is the one a full recompute of the same curve gives, the colouring is
+the same, the diagram draws exact samples only, and Curve Info shows the full computation's values."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from motiontool.camcurve.model import Curve, FixPoint
+from motiontool.camcurve.spline import CurveProfile, curve_info
+from motiontool.cameditor import editing
+from motiontool.cameditor.limits import slave_limits
+from motiontool.cameditor.ui.cards import CurveInfoCard
+from motiontool.cameditor.ui.diagram import CurveDiagram
+from motiontool.cameditor.ui.edits import FOLLOW_INTERVAL
+from motiontool.cameditor.ui.window import Slot
+
+N = 3000  # with the 1600 even samples more than four samples per pixel column: the diagram thins them
+
+
+def _long_curve() -> Curve:
+    rng = np.random.default_rng(3)
+    types = ["C"] * N
+    for k in range(400, N - 400, 600):  # a few straight sections (green) among the curved ones
+        types[k] = types[k + 1] = "T"
+    slaves = np.round(np.cumsum(rng.normal(0, 3, N))).astype(int)
+    points = tuple(FixPoint(10 * k, int(s) - int(slaves[0]), t) for k, (s, t) in enumerate(zip(slaves, types,
+                                                                                               strict=True)))
+    return Curve("long", 10 * (N - 1), points, interpolation=False)
+
+
+def _full(curve: Curve) -> Curve:
+    """An equal curve built and validated from scratch (no cache, no shortcut)."""
+    return Curve(**{f.name: getattr(curve, f.name) for f in dataclasses.fields(Curve)})
+
+
+def _open(editor, curve: Curve) -> None:
+    editor.slots = [Slot(curve.name, [], curve)]
+    editor.current = 0
+    editor.refresh(zoom=True)
+
+
+def _labels(card: CurveInfoCard) -> dict[str, str]:
+    return {key: label.text() for key, label in card.labels.items()}
+
+
+def _check_against_full_recompute(editor, reference: CurveDiagram) -> None:
+    d = editor.diagram
+    full = _full(editor.curve())
+    prof = CurveProfile(full)
+    # every sample, the fix points among them, is the full profile's value
+    at_points = np.isin(d.samples_x, prof.x)
+    assert at_points.sum() == len(full.fix_points)
+    assert np.array_equal(d.samples_y, prof.slave(d.samples_x, periodic=False))
+    assert np.array_equal(d.samples_y[at_points], prof.slave(prof.x, periodic=False))
+    # the same samples and colours as a full redraw of the curve
+    reference.show_curve(full, d.overlay)
+    assert np.array_equal(reference.samples_x, d.samples_x)
+    for item in (d.red, d.green):
+        ref_item = reference.red if item is d.red else reference.green
+        assert np.array_equal(reference.layers[ref_item], d.layers[item], equal_nan=True)
+        # drawn: a thinned subsequence of the exact samples, about two per pixel column
+        xs, ys = item.getData()
+        if len(xs):
+            where = np.searchsorted(d.samples_x, xs)
+            assert np.array_equal(d.samples_x[where], xs)
+            assert np.array_equal(d.layers[item][where], ys, equal_nan=True)
+    assert len(d.red.getData()[0]) < len(d.samples_x) / 2
+    # the markers: every fix point where the curve has it
+    assert np.array_equal(d.box.points, np.column_stack([prof.x, prof.y]))
+
+
+def test_a_drag_recomputes_what_a_full_recompute_gives(qtbot, editor):
+    curve = _long_curve()
+    _open(editor, curve)
+    editor.cards.setCurrentWidget(editor.curve_info)  # Curve Info follows the drag while it is shown
+    assert editor.options["continuous_recalc"]
+    reference = CurveDiagram()
+    card = CurveInfoCard()
+    index = N // 2
+    p = curve.fix_points[index]
+    box = editor.diagram.box
+    for step, (dm, ds) in enumerate(((2, 15), (4, 40), (-3, -25), (1, 60))):
+        box.point_dragged.emit(index, p.master + dm + 0.25, p.slave + ds, False)  # what a mouse move sends
+        moved = editor.curve()
+        assert moved.fix_points[index] == FixPoint(p.master + dm + 0.25, p.slave + ds)
+        assert moved == _full(moved)
+        _check_against_full_recompute(editor, reference)
+        at = editor.diagram.drag_marker.pos()  # the dragged point's marker sits where the point is
+        assert (at.x(), at.y()) == (moved.fix_points[index].master, moved.fix_points[index].slave)
+        qtbot.wait(int(FOLLOW_INTERVAL * 1000) + 30)  # Curve Info and the table row catch up
+        full = _full(moved)
+        assert curve_info(moved) == curve_info(full)
+        card.show_info(full, curve_info(full), slave_limits(full, editor.parameters))
+        assert _labels(editor.curve_info) == _labels(card), step
+        assert editor.fix_table.model.curve.fix_points[index] == moved.fix_points[index]
+    box.point_dragged.emit(index, p.master + 1.25, p.slave + 60, True)  # release: one undo step
+    final = editing.move_point(curve, index, p.master + 1.25, p.slave + 60)
+    assert editor.curve() == final and editor.slot().history.undo_label() == "Move point"
+    _check_against_full_recompute(editor, reference)
+    assert len(editor.diagram.drag_marker.data) == 0 and editor.diagram.points.data["visible"].all()
+    editor.actions_by_name["undo"].trigger()
+    assert editor.curve() == curve
+    _check_against_full_recompute(editor, reference)
+
+
+def test_a_hidden_curve_info_card_catches_up_when_shown(qtbot, editor):
+    """Curve Info is computed during a drag only while its card is in front; brought to the front mid-drag it
+    shows the dragged curve at once."""
+    curve = _long_curve()
+    _open(editor, curve)
+    assert editor.cards.currentWidget() is not editor.curve_info
+    before = _labels(editor.curve_info)
+    p = curve.fix_points[100]
+    editor.diagram.box.point_dragged.emit(100, p.master, p.slave + 500, False)
+    qtbot.wait(int(FOLLOW_INTERVAL * 1000) + 30)
+    assert _labels(editor.curve_info) == before  # behind, while hidden
+    editor.cards.setCurrentWidget(editor.curve_info)
+    full = _full(editor.curve())
+    card = CurveInfoCard()
+    card.show_info(full, curve_info(full), slave_limits(full, editor.parameters))
+    assert _labels(editor.curve_info) == _labels(card) != before
+    editor.diagram.box.point_dragged.emit(100, p.master, p.slave + 500, True)
+    assert editor.curve() == _full(editor.curve()) and editor.curve().fix_points[100].slave == p.slave + 500
