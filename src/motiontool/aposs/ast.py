@@ -330,48 +330,65 @@ def walk(body: list[Stmt]):
             yield from walk(inner)
 
 
-def child_exprs(node: Node) -> list[Expr]:
+def _children_function(node: Node):
+    """How to list the child expressions of nodes of this type."""
     if isinstance(node, (Unary,)):
-        return [node.operand]
+        return lambda node: [node.operand]
     if isinstance(node, Binary):
-        return [node.left, node.right]
+        return lambda node: [node.left, node.right]
     if isinstance(node, BitSel):
-        return [node.base, node.index]
+        return lambda node: [node.base, node.index]
     if isinstance(node, (Index,)):
-        return list(node.indices)
+        return lambda node: list(node.indices)
     if isinstance(node, Pseudo):
-        return [node.index]
+        return lambda node: [node.index]
     if isinstance(node, Call):
-        return list(node.args)
+        return lambda node: list(node.args)
     if isinstance(node, CmdExpr):
-        return ([node.axis] if node.axis else []) + list(node.args)
+        return lambda node: ([node.axis] if node.axis else []) + list(node.args)
     if isinstance(node, (OutRef, PostIncrement)):
-        return [node.target]
+        return lambda node: [node.target]
     if isinstance(node, Assign):
-        return [node.target, node.value]
+        return lambda node: [node.target, node.value]
     if isinstance(node, ExprStmt):
-        return [node.expr]
+        return lambda node: [node.expr]
     if isinstance(node, Command):
-        return [node.call]
+        return lambda node: [node.call]
     if isinstance(node, PrintStmt):
-        return ([node.device] if node.device else []) + list(node.items)
+        return lambda node: ([node.device] if node.device else []) + list(node.items)
     if isinstance(node, If):
-        return [cond for cond, _ in node.branches]
+        return lambda node: [cond for cond, _ in node.branches]
     if isinstance(node, (While, Repeat)):
-        return [node.cond]
+        return lambda node: [node.cond]
     if isinstance(node, Switch):
-        return [node.value] + [v for values, _, _ in node.cases for v in values]
+        return lambda node: [node.value] + [v for values, _, _ in node.cases for v in values]
     if isinstance(node, Loop):
-        return [node.count]
+        return lambda node: [node.count]
     if isinstance(node, Return):
-        return [node.value] if node.value else []
+        return lambda node: [node.value] if node.value else []
     if isinstance(node, OnInterrupt):
-        return [e for e in (node.value, node.setout, node.toin) if e is not None]
-    return []
+        return lambda node: [e for e in (node.value, node.setout, node.toin) if e is not None]
+    return lambda node: []
+
+
+_CHILDREN_BY_TYPE: dict[type, object] = {}
+
+
+def child_exprs(node: Node) -> list[Expr]:
+    # one dict lookup per node instead of up to 18 isinstance tests (the compiler walks every expression)
+    fn = _CHILDREN_BY_TYPE.get(type(node))
+    if fn is None:
+        fn = _CHILDREN_BY_TYPE[type(node)] = _children_function(node)
+    return fn(node)
 
 
 def walk_exprs(node: Node):
-    """Every expression below a statement or expression, depth first."""
-    for child in child_exprs(node):
-        yield child
-        yield from walk_exprs(child)
+    """Every expression below a statement or expression, depth first (an explicit stack: nested generators
+    cost a frame per level and value)."""
+    stack = child_exprs(node)[::-1]
+    while stack:
+        e = stack.pop()
+        yield e
+        children = child_exprs(e)
+        if children:
+            stack.extend(reversed(children))

@@ -104,30 +104,38 @@ class ExpressionParser:
 
     def _power(self) -> ast.Expr:
         left = self.unary()
-        while self.tok.is_word("EXP"):
+        toks = self.toks
+        while toks[self.i].kind == IDENT and toks[self.i].value == "EXP":
             t = self.advance()
             left = ast.Binary(t.loc, "EXP", left, self.unary())
         return left
 
     def unary(self) -> ast.Expr:
         """One operand: a primary, optionally with - ~ NOT or a cast in front (also a command argument)."""
-        t = self.tok
-        if t.is_op("-", "~") or t.is_word("NOT"):
+        t = self.toks[self.i]  # token kinds tested first: this runs for every operand of every expression
+        kind = t.kind
+        if kind == OP:
+            text = t.text
+            if text == "-" or text == "~":
+                self.advance()
+                return ast.Unary(t.loc, text, self.unary())
+            if text == "+":
+                self.advance()
+                return self.unary()
+            if text == "(" and self.peek().is_word("LONG", "DOUBLE") and self.peek(2).is_op(")"):
+                self.advance()
+                cast = self.advance().value.lower()
+                self.advance()
+                return ast.Unary(t.loc, f"({cast})", self.unary())
+        elif kind == IDENT and t.value == "NOT":
             self.advance()
-            return ast.Unary(t.loc, "NOT" if t.kind == IDENT else t.text, self.unary())
-        if t.is_op("+"):
-            self.advance()
-            return self.unary()
-        if t.is_op("(") and self.peek().is_word("LONG", "DOUBLE") and self.peek(2).is_op(")"):
-            self.advance()
-            kind = self.advance().value.lower()
-            self.advance()
-            return ast.Unary(t.loc, f"({kind})", self.unary())
+            return ast.Unary(t.loc, "NOT", self.unary())
         return self._postfix(self.primary())
 
     def _postfix(self, expr: ast.Expr) -> ast.Expr:
-        if self.tok.is_op("++", "--") and isinstance(expr, (ast.Name, ast.Index)):
-            return ast.PostIncrement(self.tok.loc, self.advance().text, expr)
+        t = self.toks[self.i]
+        if t.kind == OP and (t.text == "++" or t.text == "--") and isinstance(expr, (ast.Name, ast.Index)):
+            return ast.PostIncrement(t.loc, self.advance().text, expr)
         return expr
 
     def primary(self) -> ast.Expr:
