@@ -129,3 +129,18 @@ def test_streaming_sends_samples():
     assert times[:3] == [2, 4, 6] and len(times) >= 45
     assert packets[0]["signals"] == ["APOS", "CPOS", "KPROP"]
     assert packets[0]["values"][0][2] == 30
+
+
+def test_master_position_and_velocity_are_signals():
+    """CR 3574-3611: PULSVEL drives the virtual master; MAPOS/MAVEL (master qc, qc/s) can be streamed and
+    traced like APOS, so a CAM trace can be overlaid against the master (issue 6)."""
+    link = EmbeddedLink()
+    packets = []
+    link.subscribe(lambda e: packets.append(e.data) if e.kind == "samples" else None)
+    link.download(image("PULSACC 100000\nPULSVEL 1000\nWAITT 100000\n"))
+    link.start()
+    link.call("stream", signals=["MAPOS", "MAVEL"], interval_ms=1)
+    link.advance(200)
+    rows = [v for p in packets for v in p["values"]]
+    assert rows[-1][0] > rows[len(rows) // 2][0] > 0                # the master counter runs
+    assert rows[-1][1] == pytest.approx(4000, rel=0.01)       # 1000 lines/s = 4000 qc/s (decision K15)

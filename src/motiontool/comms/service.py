@@ -31,6 +31,8 @@ SIGNALS: dict[str, Callable[[Controller], float]] = {
     "SPEEDREF": lambda c: round(c.axis.reference * 1000),
     "INPUTS": lambda c: c.io.input_word(),
     "OUTPUTS": lambda c: c.io.output_word(),
+    "MAPOS": lambda c: c.master.mapos,   # master position and velocity in master qc, qc/s (CR: MAPOS, MAVEL)
+    "MAVEL": lambda c: c.master.mavel,
 }
 
 
