@@ -63,7 +63,7 @@ def test_s5_interval_times(slavesync):
 
 
 def test_interpolation_points_hit_fix_points_on_grid(stamping):
-    """DG L1364: "The Fix points are used directly as interpolation points provided that this is permitted by the
+    """DG L1366: "The Fix points are used directly as interpolation points provided that this is permitted by the
     interval distance."""
     pts = interpolation_points(stamping)
     assert len(pts) == 41

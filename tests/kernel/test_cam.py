@@ -303,7 +303,7 @@ def test_synccstart_0_catches_up_within_vel_and_acc_then_syncstat_is_ready_and_a
        max_size=7), st.sampled_from([0, 1, 2]), st.booleans())
 def test_the_kernel_evaluates_fix_point_curves_with_the_editors_spline(steps, slaves, curve_type, interpolation):
     """One implementation (issue 5): the kernel's curve is camcurve.spline's piecewise polynomial for fix-point
-    arrays, and the straight lines between the array's interpolation points otherwise (DG 1364). At most 1800
+    arrays, and the straight lines between the array's interpolation points otherwise (DG 1366). At most 1800
     intervals of 10 MU, so every curve fits the controller's 2000 elements (CR 3949-3952, tested above)."""
     masters = [0]
     for s in steps:

@@ -78,7 +78,7 @@ def test_stamping_roller_follows_the_curve_and_runs_at_1_2_through_the_tangent_s
         run.advance(1)
         samples.append((curve_master(ctl), slave_uu(ctl), ctl.uu(ctl.axis.apos)))
     assert not run.errors
-    # DG 1364: the controller interpolates linearly between the 41 interpolation points of the array
+    # DG 1366: the controller interpolates linearly between the 41 interpolation points of the array
     grid, points = np.linspace(0, 4000, 41), interpolation_points(stamping_curve())
 
     def linear(m: float) -> float:

@@ -157,7 +157,7 @@ def test_old_testrun_file_opens_in_a_testsetp_scope_without_controller(tmp_path)
 
 
 def test_unrecognised_or_broken_testrun_files():
-    """DG 5370-5372: "If APOSS does not recognize the file … it will be opened in a normal APOSS Window"."""
+    """DG 5366-5368: "If APOSS does not recognize the file … it will be opened in a normal APOSS Window"."""
     with pytest.raises(NotTestrun):
         parse_testrun("PRINT 1\n")
     with pytest.raises(BadTestrunFile, match="old.txt:9: 2 values, the header .line 5. names 3 columns"):
