@@ -39,6 +39,7 @@ from motiontool.ui.editor import lang, outline
 from motiontool.ui.editor.bookmarks import BookmarkStore, next_bookmark
 from motiontool.ui.editor.completion import CompletionModel, HintDelegate
 from motiontool.ui.editor.debug_marks import BlockData, DebugMarksMixin
+from motiontool.ui.editor.doc_layout import install_line_layout
 from motiontool.ui.editor.editing import EditingMixin
 from motiontool.ui.editor.gutter import LineNumberArea
 from motiontool.ui.editor.highlighter import AposHighlighter
@@ -101,6 +102,7 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, QPlainT
         self._find_dialog = None
         self.macro_dialog = None
         self._files_dialog = None
+        self._layout = install_line_layout(self)  # a keystroke repaints its line, not the whole view
         self.setLineWrapMode(QPlainTextEdit.LineWrapMode.NoWrap)
         self.setMouseTracking(True)
         self.highlighter = AposHighlighter(self.document(), self.settings.colors)
@@ -157,14 +159,18 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, QPlainT
         self.setViewportMargins(self.gutter.area_width(), 0, 0, 0)
 
     def _update_gutter(self, rect: QRect, dy: int) -> None:
-        """Follow the view. Re-highlighting a line makes Qt repaint the whole view; the margin is only
-        repainted when what it shows (first line, scroll offset, line count, caret line) changed."""
+        """Follow the view. The margin is only repainted where what it shows (first line, scroll offset, line
+        count, caret line) changed: not for a repaint of the whole view in the same state, nor for one inside
+        the caret line (typing in it, the caret blinking): its number and marks stay as they are."""
         if dy:
             self.gutter.scroll(0, dy)
             return
+        cursor = self.textCursor()
         state = (self.firstVisibleBlock().blockNumber(), self.contentOffset().y(), self.blockCount(),
-                 self.textCursor().blockNumber())
-        if rect.contains(self.viewport().rect()) and state == self._gutter_state:
+                 cursor.blockNumber())
+        line = self.blockBoundingGeometry(cursor.block()).translated(self.contentOffset()).toAlignedRect()
+        if state == self._gutter_state and (rect.contains(self.viewport().rect())
+                                            or line.adjusted(0, -2, 0, 2).contains(rect)):  # Qt adds 1 px
             return
         self._gutter_state = state
         self.gutter.update(0, rect.y(), self.gutter.width(), rect.height())

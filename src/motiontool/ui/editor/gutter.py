@@ -23,6 +23,7 @@ class LineNumberArea(QWidget):
         self.editor = editor
         self._anchor_block: int | None = None
         self.setCursor(Qt.CursorShape.ArrowCursor)
+        self.setAttribute(Qt.WidgetAttribute.WA_OpaquePaintEvent)  # paintEvent fills its area: no parent paint
 
     def area_width(self) -> int:
         digits = len(str(max(1, self.editor.blockCount())))
