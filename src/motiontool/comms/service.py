@@ -69,17 +69,18 @@ class ControllerService:
 
     # --- time ------------------------------------------------------------------------------------------
     def tick(self) -> None:
-        self.controller.tick()
-        self.store.tick(self.controller)
+        c = self.controller
+        c.tick()
+        store = self.store
+        if store.waiting_for_input or c.program_state != store.seen_state:  # else store.tick has nothing to do
+            store.tick(c)
         if self.recording is not None:
             self.recording.sample(self.controller)
-        if self.stream_signals:
-            c = self.controller
-            if c.time_ms % self.stream_interval == 0:
-                self._stream_times.append(c.time_ms)
-                self._stream_buffer.append([read(c) for _, read in self.stream_signals])
-                if len(self._stream_times) >= max(1, 20 // self.stream_interval):  # a packet every ~20 ms
-                    self.flush_stream()
+        if self.stream_signals and c.time_ms % self.stream_interval == 0:
+            self._stream_times.append(c.time_ms)
+            self._stream_buffer.append([read(c) for _, read in self.stream_signals])
+            if len(self._stream_times) >= max(1, 20 // self.stream_interval):  # a packet every ~20 ms
+                self.flush_stream()
 
     def flush_stream(self) -> None:
         if self._stream_times:

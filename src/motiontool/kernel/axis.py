@@ -20,10 +20,13 @@ from motiontool.kernel.units import Scaling
 
 IDLE, POSITIONING, SPEED, STOPPING, HOMING, SYNC = "idle", "positioning", "speed", "stopping", "homing", "sync"
 CAM = "cam"  # SYNCC: axis.sync is a cam.CamMotion
+_TO_TARGET = (POSITIONING, STOPPING)  # modes that end when the profile is done
 
 
-@dataclass
+@dataclass(frozen=True)
 class Gains:
+    """The position controller's parameters (replaced as a whole when parameters are applied)."""
+
     kprop: float = 30.0
     kder: float = 0.0
     kint: float = 0.0
@@ -36,6 +39,18 @@ class Gains:
     poserrtime: int = 0
     regwmax: int = 0
     regwmin: int = 0
+
+    def __post_init__(self) -> None:
+        # the per-mille factors of the position law (kprop_1000 = KPROP/1000 …), divided once instead of every
+        # tick: the same floats
+        setattr_ = object.__setattr__
+        setattr_(self, "kprop_1000", self.kprop / 1000.0)
+        setattr_(self, "kder_1000", self.kder / 1000.0)
+        setattr_(self, "bandwidth_1000", self.bandwidth / 1000.0)
+        setattr_(self, "ffvel_1000", self.ffvel / 1000.0)
+        setattr_(self, "ffacc_1000", self.ffacc / 1000.0)
+        setattr_(self, "window", bool(self.regwmin or self.regwmax))  # the control window applies
+        setattr_(self, "integrating", bool(self.kint and self.kilim))  # the I term applies
 
 
 class Axis:
@@ -83,63 +98,76 @@ class Axis:
     # --- one control tick -----------------------------------------------------------------------------
     def tick(self) -> None:
         pg = self.profile
-        if self.control_on:
-            if self.mode == SYNC:
+        control_on = self.control_on
+        if control_on:
+            mode = self.mode
+            if mode == CAM:
+                sync = self.sync
+                sync.step(pg)
+                if sync.finish is not None:  # disengaged: position to the slave stop position
+                    self.move_to(*sync.finish)
+            elif mode == SYNC:
                 self.sync.step(pg)
-            elif self.mode == CAM:
-                self.sync.step(pg)
-                if self.sync.finish is not None:  # disengaged: position to the slave stop position
-                    self.move_to(*self.sync.finish)
             elif pg.mode != "idle":
                 pg.step()
             if self.homing is not None:
                 self.homing.tick(self)
             g = self.gains
-            self._tick += 1
-            if self._tick >= g.timer:
+            ticks = self._tick + 1
+            if ticks >= g.timer:  # the position law (module docstring), every TIMER ms
                 self._tick = 0
-                self.reference = self._control(pg)
+                e = pg.position - self.apos
+                if g.window and self._posfloat(pg, e):
+                    reference = 0.0
+                else:
+                    reference = g.bandwidth_1000 * (g.kprop_1000 * e + (self._integral_term(e) if g.integrating
+                                                                         else 0.0))
+                    if g.ffvel:
+                        reference += g.ffvel_1000 * pg.velocity
+                    if g.kder:
+                        reference -= g.kder_1000 * self.plant.velocity
+                    if g.ffacc:
+                        reference += g.ffacc_1000 * pg.acceleration
+                self.reference = reference
+            else:
+                self._tick = ticks
+                reference = self.reference
         else:
-            self.reference = self.open_loop_reference
-        self.plant.step(self.reference, self.scaling.vmax)
-        self.apos = math.floor(self.plant.position) - self.origin
-        if self.mode in (POSITIONING, STOPPING) and pg.done:
-            if self.mode == STOPPING:
+            self.reference = reference = self.open_loop_reference
+        plant = self.plant
+        plant.step(reference, self.scaling.vmax)
+        self.apos = apos = math.floor(plant.position) - self.origin
+        mode = self.mode
+        if mode in _TO_TARGET and pg.done:
+            if mode == STOPPING:
                 self.motor_stop_state = self.stopped_motion is not None
             self.mode = IDLE
         if self.control_on:  # _monitor, its common case inline (one call less per tick)
-            if abs(pg.position - self.apos) > self.gains.poserr:
+            if abs(pg.position - apos) > self.gains.poserr:
                 self._monitor()
             else:
                 self._poserr_count = 0
 
-    def _control(self, pg: ProfileGenerator) -> float:
+    def _posfloat(self, pg: ProfileGenerator, e: float) -> bool:
+        """Control window (REGWMIN/REGWMAX set, DG 8855-8887): POSFLOAT inside REGWMIN at standstill, left beyond
+        REGWMAX; while it holds the speed reference is 0."""
         g = self.gains
-        e = pg.position - self.apos
-        if g.regwmin or g.regwmax:  # control window (DG 8855-8887): POSFLOAT inside REGWMIN at standstill
-            if self.posfloat and abs(e) > g.regwmax:
-                self.posfloat = False
-            elif not self.posfloat and pg.mode == "idle" and abs(e) <= g.regwmin:
-                self.posfloat = True
-            if self.posfloat:
-                return 0.0
-        vmax = self.scaling.vmax
-        integral_term = 0.0
-        if g.kint and g.kilim:
-            self.integral += e
-            integral_term = g.kint * self.integral / 1e6
-            limit = g.kilim / 1000.0 * vmax
-            if abs(integral_term) > limit:
-                integral_term = math.copysign(limit, integral_term)
-                self.integral = integral_term * 1e6 / g.kint
-        ref = g.bandwidth / 1000.0 * (g.kprop / 1000.0 * e + integral_term)
-        if g.ffvel:
-            ref += g.ffvel / 1000.0 * pg.velocity
-        if g.kder:
-            ref -= g.kder / 1000.0 * self.plant.velocity
-        if g.ffacc:
-            ref += g.ffacc / 1000.0 * pg.acceleration
-        return ref
+        if self.posfloat and abs(e) > g.regwmax:
+            self.posfloat = False
+        elif not self.posfloat and pg.mode == "idle" and abs(e) <= g.regwmin:
+            self.posfloat = True
+        return self.posfloat
+
+    def _integral_term(self, e: float) -> float:
+        """I = KINT/1e6 · Σe, limited to ±KILIM/1000 · VELMAX (KINT and KILIM set)."""
+        g = self.gains
+        self.integral += e
+        integral_term = g.kint * self.integral / 1e6
+        limit = g.kilim / 1000.0 * self.scaling.vmax
+        if abs(integral_term) > limit:
+            integral_term = math.copysign(limit, integral_term)
+            self.integral = integral_term * 1e6 / g.kint
+        return integral_term
 
     def _monitor(self) -> None:
         g = self.gains

@@ -35,6 +35,9 @@ from motiontool.kernel.errors import ControllerError
 MAX_CURVE_ARRAY = 2000  # "For that reason the maximum array size is 2000" (CR 3949-3952)
 SYNCSTAT_READY, SYNCSTAT_ACCURACY = 1, 4
 
+# CurveFunction._piece of a curve with interpolation points: no x is inside it, `at` evaluates
+_NO_PIECE = (math.inf, -math.inf, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+
 # CamMotion states
 CATCHUP, CURVE, WAIT_START, ENGAGE, WAIT_STOP, DISENGAGE = "catchup", "curve", "wait", "engage", "waitstop", "disengage"
 
@@ -53,6 +56,7 @@ class CurveFunction:
             self.points = [float(v) for v in decoded.interpolation_points]
             self.step = self.length / (len(self.points) - 1)
             self.linear = True
+            self._piece = _NO_PIECE
         else:
             try:
                 pp = profile(decoded.to_curve()).ppoly
@@ -61,6 +65,12 @@ class CurveFunction:
             self.breaks = [float(b) for b in pp.x]
             self.coeffs = [tuple(float(c) for c in pp.c[:, i]) for i in range(pp.c.shape[1])]
             self.linear = False
+            # per piece: the range of x it is used for (the first and last piece extrapolate), its start and
+            # coefficients; evaluation tries the piece of the last call first (the master moves a little per tick)
+            last = len(self.coeffs) - 1
+            self._pieces = [(-math.inf if j == 0 else self.breaks[j], math.inf if j == last else self.breaks[j + 1],
+                             self.breaks[j], *self.coeffs[j]) for j in range(last + 1)]
+            self._piece = self._pieces[0]
         self._start = self._shape(decoded.start_path, decoded.interpolation)
         self._stop = self._shape(decoded.stop_path, decoded.interpolation)
 
@@ -98,6 +108,10 @@ class CurveFunction:
 
     def __call__(self, x: float) -> float:
         """f at 0 <= x <= L."""
+        return self.at(x)
+
+    def at(self, x: float) -> float:
+        """f at 0 <= x <= L (a plain method: the CAM step calls it every tick)."""
         if self.linear:
             q = x / self.step
             j = int(q)
@@ -107,20 +121,21 @@ class CurveFunction:
             elif j < 0:
                 j = 0
             return pts[j] + (q - j) * (pts[j + 1] - pts[j])
-        j = bisect.bisect_right(self.breaks, x) - 1
-        if j < 0:
-            j = 0
-        elif j >= len(self.coeffs):
-            j = len(self.coeffs) - 1
-        dx = x - self.breaks[j]
-        c0, c1, c2, c3, c4, c5 = self.coeffs[j]
+        # the piece bisect_right(breaks, x) - 1 (clamped to the pieces) picks: the last one when x is in its range
+        lo, hi, start, c0, c1, c2, c3, c4, c5 = self._piece
+        if not lo <= x < hi:
+            j = bisect.bisect_right(self.breaks, x) - 1
+            pieces = self._pieces
+            lo, hi, start, c0, c1, c2, c3, c4, c5 = self._piece = pieces[
+                0 if j < 0 else j if j < len(pieces) else len(pieces) - 1]
+        dx = x - start
         return ((((c0 * dx + c1) * dx + c2) * dx + c3) * dx + c4) * dx + c5
 
     def periodic(self, m: float) -> float:
         """F(M): the curve continued over cycles, the slave advancing SlaveCycleLen per master cycle."""
         length = self.length
         cycle = math.floor(m / length)
-        return self(m - cycle * length) + cycle * self.slave_length
+        return self.at(m - cycle * length) + cycle * self.slave_length
 
 
 def _blend(u: float) -> float:
@@ -216,11 +231,16 @@ class CamMotion:
     """One running SYNCC (axis mode "cam"); stepped by the axis every tick like SyncMotion."""
 
     kind = "cam"
-    markers = None  # cam_markers.CamMarkers: SYNCCMM/SYNCCMS marker correction, SYNCMSTART 2000 start
+    # slots: eight axes step their CamMotion every tick; attribute access without an instance dict is faster
+    __slots__ = ("cam", "markers", "cycles", "cycles_done", "limits", "vel", "acc", "dec", "accuracy", "k", "temp_qc",
+                 "base", "_cycle", "_last_m", "state", "ticks", "locked", "pair", "x_start", "span", "direction", "p0",
+                 "stop_qc", "stop_uu", "pending_mcpos", "pending_cam", "finish", "target", "_last_t", "_prev_t",
+                 "_relation", "_final")
 
     def __init__(self, cam: CamState, cycles: int, limits, accuracy: int, slave_qc: float, temp_origin: int,
                  qc_per_uu: float, sync_origin: tuple[int, int] | None = None):
         self.cam = cam
+        self.markers = None  # cam_markers.CamMarkers: SYNCCMM/SYNCCMS marker correction, SYNCMSTART 2000 start
         self.cycles = max(0, cycles)
         self.cycles_done = 0
         self.limits = limits
@@ -261,6 +281,7 @@ class CamMotion:
         self.direction = 1                                     # the master's direction when the path began
         self.p0 = slave_qc
         self.stop_qc = 0.0
+        self.stop_uu = 0.0                                     # SYNCCSTOP's slave stop position (UU)
         self.pending_mcpos: float | None = None
         self.pending_cam: CamState | None = None
         self.finish: tuple[float, object] | None = None       # (target qc, limits): the axis positions there
@@ -321,8 +342,6 @@ class CamMotion:
             s += round((near_uu - s) / sl) * sl
         return (s * self.k) + self.temp_qc
 
-    stop_uu = 0.0
-
     # --- one tick ------------------------------------------------------------------------------------------
     def _curve_qc(self, m: float) -> float:
         return self.base + self.cam.curve.periodic(m) * self.k
@@ -332,7 +351,9 @@ class CamMotion:
         if self.markers is not None:  # marker corrections inside the correction window (kernel/cam_markers.py)
             self.markers.realise()
         cam = self.cam
-        m = cam.master_position()
+        data, master = cam.data, cam.master
+        p, a = data.mc_ref  # cam.master_position() inline: this runs every tick on every axis
+        m = p + (master.raw - master.origin + data.sync_shift - a) * cam.facts / cam.factm + cam.mu_shift
         curve = cam.curve
         length = curve.length
         cycle = math.floor(m / length)
@@ -344,7 +365,14 @@ class CamMotion:
             self._check_cycles()
         state = self.state
         if state is CURVE or state is CATCHUP:
-            t = self.base + (curve(m - cycle * length) + cycle * curve.slave_length) * self.k
+            x = m - cycle * length
+            lo, hi, start, c0, c1, c2, c3, c4, c5 = curve._piece
+            if lo <= x < hi:  # curve.at(x) inline for the piece of the last call (nearly every tick)
+                dx = x - start
+                y = ((((c0 * dx + c1) * dx + c2) * dx + c3) * dx + c4) * dx + c5
+            else:
+                y = curve.at(x)
+            t = self.base + (y + cycle * curve.slave_length) * self.k
         elif state in (WAIT_START, WAIT_STOP):
             t = self.p0 if state == WAIT_START else self._curve_qc(m)
             start, stop = self.pair
@@ -394,12 +422,24 @@ class CamMotion:
                 t = s
                 self.finish = (s, self.limits)
         self._last_m = m
-        relation = (cam.data.mc_ref, cam.data.sync_shift)
-        if relation != self._relation:  # DEFMCPOS / MOVESYNCORIGIN moved the curve: caught up within the limits
+        data = cam.data
+        if data.mc_ref is not self._relation[0] or data.sync_shift != self._relation[1]:
+            relation = (data.mc_ref, data.sync_shift)
+            if relation != self._relation:  # DEFMCPOS / MOVESYNCORIGIN moved the curve: caught up within the limits
+                self.locked = False
+                self._last_t = self._prev_t = pg.position
             self._relation = relation
-            self.locked = False
-            self._last_t = self._prev_t = pg.position
-        self._follow(pg, t)
+        last = self._last_t
+        vt = t - last
+        if self.locked and abs(vt) <= self.vel * (1 + 1e-9):  # _follow's locked case inline (every tick on the curve)
+            self._prev_t = last
+            self._last_t = self.target = t
+            v0 = pg.velocity
+            pg.position = t
+            pg.acceleration = vt - v0
+            pg.velocity = vt
+        else:
+            self._follow(pg, t)
         if self.state == CATCHUP and self.locked:
             self.state = CURVE
 
@@ -482,21 +522,24 @@ class CamMotion:
 
     def _follow(self, pg, t: float) -> None:
         """Track the target within VEL and ACC/DEC (kernel-spec f.0); lock onto it when caught up."""
-        vt = t - self._last_t
+        last = self._last_t
+        vt = t - last
         # The curve's own change of velocity is the editor's business (Curve Info checks it against the limits,
         # DG 3799-3833), and the master counts whole qc: once locked the slave follows the target exactly (its
         # velocity is the target's) and only VEL unlocks it; ACC/DEC limit catching up (engage at maximum velocity,
         # a moved curve master position).
-        own = abs(vt - (self._last_t - self._prev_t)) + 1e-9
-        self._prev_t, self._last_t = self._last_t, t
+        prev = self._prev_t
+        self._prev_t, self._last_t = last, t
         self.target = t
         v0 = pg.velocity
-        if self.locked and abs(vt) > self.vel * (1 + 1e-9):
-            self.locked = False
-        if self.locked:
+        locked = self.locked
+        if locked and abs(vt) > self.vel * (1 + 1e-9):
+            locked = self.locked = False
+        if locked:
             v = vt
             pg.position = t
         else:
+            own = abs(vt - (last - prev)) + 1e-9
             gap = t - pg.position
             d = gap - vt
             brake = min(self.acc, self.dec)

@@ -27,12 +27,10 @@ def command(*names):
 class Until(Wait):
     def __init__(self, condition, value=None, resumable=True, on_abandon=None):
         self.condition = condition
+        self.done = condition  # Wait.done, checked every tick: the condition itself (one call less per tick)
         self.value = value
         self.resumable = resumable
         self.on_abandon = on_abandon
-
-    def done(self) -> bool:
-        return self.condition()
 
     def abandon(self) -> None:
         if self.on_abandon is not None:

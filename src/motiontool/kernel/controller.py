@@ -279,18 +279,20 @@ class Controller:
     # --- time ------------------------------------------------------------------------------------------
     def tick(self) -> None:
         """Advance one millisecond."""
-        self.time_ms += 1
+        self.time_ms = time_ms = self.time_ms + 1
         if self.io.events:
-            self.io.apply_events(self.time_ms)
+            self.io.apply_events(time_ms)
         try:
-            if self._functions is None or self._functions:
+            functions = self._functions
+            if functions is None or functions:
                 self._machine_inputs()
-            self.master.tick(self.time_ms)
-            self.axis.tick()
+            self.master.tick(time_ms)
+            axis = self.axis
+            axis.tick()
             self.markers.tick()
-            if self.axis.homing is not None and self.axis.homing.done:
+            if axis.homing is not None and axis.homing.done:
                 self._homing_finished()
-            if self.soft_limits != (None, None) and self.axis.mode not in ("idle", "positioning"):
+            if self.soft_limits != (None, None) and axis.mode not in ("idle", "positioning"):
                 self._soft_limits_while_moving()
             if self.limit_blocked_direction and self._inside_soft_limits():
                 self.limit_blocked_direction = 0
@@ -298,8 +300,17 @@ class Controller:
             self.raise_error(exc)
         if self.recorder.active is not None:
             self.recorder.sample(self._read_sysvar_for_recording)
-        if self.program_state == "running":
-            self._run_program()
+        if self.program_state == "running":  # a slice of the program (inline: every tick)
+            vm = self.vm
+            if self.interrupts.sources or self.error:
+                self._serve_interrupts(vm)
+            try:
+                vm.run(INSTRUCTIONS_PER_TICK)
+            except ControllerError as exc:
+                self.raise_error(exc)
+                return
+            if vm.ended and self.program_state == "running":
+                self._end_program("ended")
 
     def run_for(self, ms: int, until: Callable[[], bool] | None = None) -> None:
         for _ in range(ms):
@@ -378,18 +389,6 @@ class Controller:
     def _read_sysvar_for_recording(self, index: int) -> int:
         value = read_sysvar(self, index)
         return 0 if value is None else value
-
-    def _run_program(self) -> None:
-        vm = self.vm
-        if self.interrupts.sources or self.error:
-            self._serve_interrupts(vm)
-        try:
-            vm.run(INSTRUCTIONS_PER_TICK)
-        except ControllerError as exc:
-            self.raise_error(exc)
-            return
-        if vm.ended and self.program_state == "running":
-            self._end_program("ended")
 
     def _serve_interrupts(self, vm: VM) -> None:
         sources = self.interrupts.sources

@@ -194,18 +194,16 @@ class Markers:
         values = ctl.params.values
         sync = axis.sync
         # fast path (issue 5, benchmarks/kernel_rtf.py): no marker can come this tick, see _quiet
-        key = (self.master._cells, self.slave._cells, axis.scaling, values[3231], values[3319], values[3320])
-        if (sync is None or sync.markers is None) and (key == self._q_key or self._quiet(key)):
-            m1 = ctl.master.position
-            s1 = axis.plant.position
-            m_lo, m_hi, s_lo, s_hi = self._q
-            if (m_lo < m1 < m_hi or m1 == self._m) and (s_lo < s1 < s_hi or s1 == self._s):
-                self._m, self._s = m1, s1
-                self.master_events = self.slave_events = _NONE
-                return
-        ctl = self.ctl
-        values = ctl.params.values
-        axis = ctl.axis
+        if sync is None or sync.markers is None:
+            key = (axis.scaling, values[3231], values[3319], values[3320])
+            if key == self._q_key or self._quiet(key):
+                m1 = ctl.master.position
+                s1 = axis.plant.position
+                m_lo, m_hi, s_lo, s_hi = self._q
+                if (m_lo < m1 < m_hi or m1 == self._m) and (s_lo < s1 < s_hi or s1 == self._s):
+                    self._m, self._s = m1, s1
+                    self.master_events = self.slave_events = _NONE
+                    return
         m0, m1 = self._m, ctl.master.position
         s0, s1 = self._s, axis.plant.position
         if m0 == m1 and s0 == s1 and values[3319] < 2 and values[3320] < 2 and axis.mode != "sync":
@@ -215,6 +213,7 @@ class Markers:
         if axis.scaling is not self._scaling:  # parameters were applied: the index period may have changed
             self._scaling = axis.scaling
             self._slave_period = max(1, axis.index_period())
+        self._q_key = ()  # the channels' cells may change: the fast path's bounds are computed again
         master = self.master.tick(m0, m1, values[3319], 4 * max(1, values[3231]), ctl.io)  # 32-31 lines → qc
         slave = self.slave.tick(s0, s1, values[3320], self._slave_period, ctl.io)
         marker_sync = axis.sync.markers if axis.mode == "sync" or axis.mode == "cam" else None  # SYNCM / SYNCCM*
@@ -236,13 +235,15 @@ class Markers:
         """The fast path of tick() applies without a sensor on either side, with marker types 0/1 (index pulse) and
         no marker synchronisation: then tick() would find no marker and change nothing but the remembered positions
         while each side stands or stays between the same index-pulse edges as at its last evaluation (the
-        channel's cells). For a new key (cells, scaling, 32-31, 33-19, 33-20) this computes those position bounds
-        (½ qc of margin against rounding); False when the fast path does not apply."""
-        master_cells, slave_cells, scaling, lines, master_type, slave_type = key
+        channel's cells). For a new key (scaling, 32-31, 33-19, 33-20) or after the channels ran (their cells may
+        have changed; tick() then forgets the key) this computes those position bounds (½ qc of margin against
+        rounding); False when the fast path does not apply."""
+        scaling, lines, master_type, slave_type = key
         if (master_type >= 2 or slave_type >= 2 or scaling is not self._scaling
                 or self.master.sensor is not None or self.slave.sensor is not None):
             return False
-        self._q = (*_between(master_cells, 4 * max(1, lines)), *_between(slave_cells, self._slave_period))
+        self._q = (*_between(self.master._cells, 4 * max(1, lines)),
+                   *_between(self.slave._cells, self._slave_period))
         self._q_key = key
         return True
 

@@ -132,9 +132,9 @@ class Master:
             if self._noise is not None:
                 v += self._noise.uniform(-self.config.jitter, self.config.jitter)
         self.velocity = v
-        self.position += v
-        self.raw = math.floor(self.position)
-        self._history.append(self.raw)
+        self.position = position = self.position + v
+        self.raw = raw = math.floor(position)
+        self._history.append(raw)
 
     # --- commands -------------------------------------------------------------------------------------------
     def pulsacc(self, hz_per_s: int) -> None:

@@ -31,9 +31,11 @@ class ProgramStore:
         self.active = False           # the Autostart mechanism (only after a power-on start)
         self.executed: set[int] = set()
         self.running: int | None = None
-        self._waiting_for_input = False
+        # tick() has work only while the program state changes or a start input is watched: the service skips the
+        # call otherwise (comms/service.py)
+        self.waiting_for_input = False
         self._last_start_input = False
-        self._seen_state = "idle"
+        self.seen_state = "idle"
 
     # --- memory ----------------------------------------------------------------------------------------
     def save(self, number: int, image: ProgramImage) -> None:
@@ -67,12 +69,12 @@ class ProgramStore:
             raise ValueError(f"no program {number}")
         if manual:
             self.active = False
-            self._waiting_for_input = False
+            self.waiting_for_input = False
         controller.load(self.programs[number])
         controller.start()
         self.running = number
         self.executed.add(number)
-        self._seen_state = controller.program_state
+        self.seen_state = controller.program_state
 
     def power_on(self, controller) -> None:
         """Power on (or Restart): start the Autostart program, or wait for the start input (DG 2707-2717)."""
@@ -85,22 +87,22 @@ class ProgramStore:
             self.start(controller, self.autostart, manual=False)
         elif self._start_function(controller) is not None:
             self.active = True
-            self._waiting_for_input = True
+            self.waiting_for_input = True
             self._last_start_input = False  # "the pin may already be activated when the controller is powered on"
 
     # --- every tick, after the controller's ----------------------------------------------------------------
     def tick(self, controller) -> None:
         state = controller.program_state
-        if state != self._seen_state:
-            previous, self._seen_state = self._seen_state, state
+        if state != self.seen_state:
+            previous, self.seen_state = self.seen_state, state
             if previous == "running" and state in ("ended", "error", "break"):
                 self._program_ended(controller, state)
-        if self._waiting_for_input:
+        if self.waiting_for_input:
             now = self._start_input(controller)
             rising = now and not self._last_start_input
             self._last_start_input = now
             if rising and controller.program_state != "running":
-                self._waiting_for_input = False
+                self.waiting_for_input = False
                 number = self._selected_program(controller)
                 if number in self.programs:
                     self.start(controller, number, manual=False)
@@ -121,7 +123,7 @@ class ProgramStore:
                 _message(controller, f"PRGPAR {prgpar}: no such program")
             return
         if self._start_function(controller) is not None:
-            self._waiting_for_input = True  # a rising edge only (DG 2762-2764)
+            self.waiting_for_input = True  # a rising edge only (DG 2762-2764)
             self._last_start_input = self._start_input(controller)
             return
         if self.autostart is not None and self.executed == {self.autostart}:

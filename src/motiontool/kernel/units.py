@@ -6,7 +6,6 @@ qc = quad counts; velocities in qc per ms, accelerations in qc per ms², jerk in
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property
 
 
 @dataclass(frozen=True)
@@ -33,15 +32,11 @@ class Scaling:
         value = qc * self.posfact_n / self.posfact_z
         return int(value + 0.5) if value >= 0 else -int(-value + 0.5)
 
-    @cached_property
-    def vmax(self) -> float:
-        """VELMAX in qc/ms (DG 9070-9086: 3000 rpm, 500 PPR → 100 qc/ms)."""
-        return self.velmax_rpm * self.encoder_ppr * 4 / 60000.0
-
-    @cached_property
-    def amax(self) -> float:
-        """Maximum acceleration VELMAX / RAMPMIN in qc/ms² (DG 8959-8973)."""
-        return self.vmax / self.rampmin_ms
+    def __post_init__(self) -> None:
+        # plain attributes, not cached properties: the axis reads vmax every tick
+        vmax = self.velmax_rpm * self.encoder_ppr * 4 / 60000.0
+        object.__setattr__(self, "vmax", vmax)  # VELMAX in qc/ms (DG 9070-9086: 3000 rpm, 500 PPR → 100 qc/ms)
+        object.__setattr__(self, "amax", vmax / self.rampmin_ms)  # VELMAX / RAMPMIN in qc/ms² (DG 8959-8973)
 
     def velocity(self, v: int) -> float:
         """VEL/CVEL/HOME_VEL value (fraction of VELMAX with denominator VELRES) → qc/ms (CR 713-740)."""
