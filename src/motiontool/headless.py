@@ -36,21 +36,33 @@ class RunOptions:
     master_node: int | None = None                          # whose PULSVEL is everyone's master (default lowest)
 
 
-def run_program(path: Path | None, options: RunOptions, out: TextIO = sys.stdout, err: TextIO = sys.stderr) -> int:
-    if options.nodes:  # a multi-axis project: several controllers on one master signal
-        return run_nodes(path, options, out, err)
+
+def compile_program(path, options, err):
+    """The program image, or None after printing the diagnostics (GCC style) on err."""
     result = compile_source(path=path, include_dirs=options.include_dirs)
     for d in result.diagnostics:
         print(d.format(), file=err)
-    if not result.ok:
+    return result.image if result.ok else None
+
+
+def load_config(options, err):
+    """(True, the --config file or None); (False, None) when the file is refused (its message on err)."""
+    if options.config is None:
+        return True, None
+    try:
+        return True, read_config(options.config)
+    except ConfigError as exc:
+        print(str(exc), file=err)
+        return False, None
+
+
+def run_program(path: Path | None, options: RunOptions, out: TextIO = sys.stdout, err: TextIO = sys.stderr) -> int:
+    if options.nodes:  # a multi-axis project: several controllers on one master signal
+        return run_nodes(path, options, out, err)
+    image = compile_program(path, options, err)
+    loaded, config = load_config(options, err)
+    if image is None or not loaded:
         return EXIT_COMPILE
-    config = None
-    if options.config is not None:
-        try:
-            config = read_config(options.config)
-        except ConfigError as exc:
-            print(str(exc), file=err)
-            return EXIT_COMPILE
     link = EmbeddedLink(realtime_factor=1.0 if options.realtime else None)
     state = {"error": False}
     trace_rows: list[list] = []
@@ -95,7 +107,7 @@ def run_program(path: Path | None, options: RunOptions, out: TextIO = sys.stdout
             link.call("schedule_input", number=number, value=value, time_ms=at)
         if options.trace:
             link.call("stream", signals=options.signals, interval_ms=options.trace_interval_ms)
-        link.download(result.image.to_bytes(), name=result.image.name)
+        link.download(image.to_bytes(), name=image.name)
         link.start()
         total = int(options.seconds * 1000)
         step = 50
@@ -202,22 +214,10 @@ def run_nodes(path: Path | None, options: RunOptions, out: TextIO = sys.stdout, 
     except _Usage as exc:
         print(str(exc), file=err)
         return EXIT_COMPILE
-    images = {}
-    for n in nodes:
-        result = compile_source(path=programs[n], include_dirs=options.include_dirs)
-        for d in result.diagnostics:
-            print(d.format(), file=err)
-        if result.ok:
-            images[n] = result.image
-    if len(images) < len(nodes):
+    images = {n: compile_program(programs[n], options, err) for n in nodes}
+    loaded, config = load_config(options, err)
+    if None in images.values() or not loaded:
         return EXIT_COMPILE
-    config = None
-    if options.config is not None:
-        try:
-            config = read_config(options.config)
-        except ConfigError as exc:
-            print(str(exc), file=err)
-            return EXIT_COMPILE
     try:
         bus = EmbeddedBus(nodes, master_node=options.master_node if options.master_node is not None else nodes[0])
     except ValueError as exc:
