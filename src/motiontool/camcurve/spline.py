@@ -356,7 +356,7 @@ def grid_positions(curve: Curve) -> np.ndarray:
 
 
 def interpolation_points(curve: Curve) -> list[int]:
-    """Slave values at the N+1 grid positions, rounded to integers as the controller stores them [DG L1364]."""
+    """Slave values at the N+1 grid positions, rounded to integers as the controller stores them [DG L1366]."""
     return round_half_up(profile(curve).slave(grid_positions(curve), periodic=False))
 
 

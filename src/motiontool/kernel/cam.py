@@ -5,7 +5,7 @@ encodes with (docs/formats/cam-array.md); a malformed array is controller error 
 
 How the slave position follows from the curve (kernel-spec g.1):
 * arrays with interpolation points (firmware < 5.00): "The CAM-Editor performs a linear interpolation between
-  the interpolation points" (DG 1364) — the controller follows the stored points with straight lines;
+  the interpolation points" (DG 1366) — the controller follows the stored points with straight lines;
 * arrays of fix points only (MCO ≥ 5.00, "no interpolation points are used anymore", CR 3955-3958): the curve is
   evaluated from the fix points with `camcurve.spline` — the editor's own piecewise polynomial, whose
   coefficients are evaluated here with Horner's rule (no numpy per tick).
@@ -52,7 +52,7 @@ class CurveFunction:
         self.decoded = decoded
         self.length = float(decoded.master_length)
         self.slave_length = float(decoded.slave_length)
-        if decoded.interpolation:  # linear between the stored interpolation points (DG 1364)
+        if decoded.interpolation:  # linear between the stored interpolation points (DG 1366)
             self.points = [float(v) for v in decoded.interpolation_points]
             self.step = self.length / (len(self.points) - 1)
             self.linear = True
