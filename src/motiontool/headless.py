@@ -56,6 +56,37 @@ def load_config(options, err):
         return False, None
 
 
+
+def prepare_link(link, config, settings: list[str], inputs: list[str], options, err, node_ids: bool = False) -> bool:
+    """Load --config, then --set and --input into one controller before its program starts; False after
+    printing why on err. ``node_ids``: the options were given as [ID:]… (several controllers)."""
+    form = "[ID:]" if node_ids else ""
+    if config is not None:
+        try:
+            download_config(link, config)
+        except ConfigError as exc:
+            print(f"{options.config}: {exc}", file=err)
+            return False
+    for setting in settings:
+        key, _, value = setting.partition("=")
+        if not value:
+            print(f"motiontool run: --set needs {form}NAME=VALUE, got '{setting}'", file=err)
+            return False
+        try:
+            number = int(value, 0)
+        except ValueError:
+            print(f"motiontool run: --set {key}: '{value}' is not a whole number", file=err)
+            return False
+        link.write_parameter(key.strip(), number)
+    for spec in inputs:
+        m = _INPUT.match(spec.strip())
+        if not m:
+            print(f"motiontool run: --input needs {form}N=V or {form}N=V@T (ms), got '{spec}'", file=err)
+            return False
+        link.call("schedule_input", number=int(m.group(1)), value=int(m.group(2)), time_ms=int(m.group(3) or 0))
+    return True
+
+
 def run_program(path: Path | None, options: RunOptions, out: TextIO = sys.stdout, err: TextIO = sys.stderr) -> int:
     if options.nodes:  # a multi-axis project: several controllers on one master signal
         return run_nodes(path, options, out, err)
@@ -81,30 +112,8 @@ def run_program(path: Path | None, options: RunOptions, out: TextIO = sys.stdout
 
     link.subscribe(on_event)
     try:
-        if config is not None:
-            try:
-                download_config(link, config)
-            except ConfigError as exc:
-                print(f"{options.config}: {exc}", file=err)
-                return EXIT_COMPILE
-        for setting in options.settings:
-            key, _, value = setting.partition("=")
-            if not value:
-                print(f"motiontool run: --set needs NAME=VALUE, got '{setting}'", file=err)
-                return EXIT_COMPILE
-            try:
-                number = int(value, 0)
-            except ValueError:
-                print(f"motiontool run: --set {key}: '{value}' is not a whole number", file=err)
-                return EXIT_COMPILE
-            link.write_parameter(key.strip(), number)
-        for spec in options.inputs:
-            m = _INPUT.match(spec.strip())
-            if not m:
-                print(f"motiontool run: --input needs N=V or N=V@T (ms), got '{spec}'", file=err)
-                return EXIT_COMPILE
-            number, value, at = int(m.group(1)), int(m.group(2)), int(m.group(3) or 0)
-            link.call("schedule_input", number=number, value=value, time_ms=at)
+        if not prepare_link(link, config, options.settings, options.inputs, options, err):
+            return EXIT_COMPILE
         if options.trace:
             link.call("stream", signals=options.signals, interval_ms=options.trace_interval_ms)
         link.download(image.to_bytes(), name=image.name)
@@ -244,28 +253,8 @@ def run_nodes(path: Path | None, options: RunOptions, out: TextIO = sys.stdout, 
         for n in nodes:
             link = bus.link(n)
             link.subscribe(listener(n))
-            if config is not None:
-                try:
-                    download_config(link, config)
-                except ConfigError as exc:
-                    print(f"{options.config}: {exc}", file=err)
-                    return EXIT_COMPILE
-            for setting in settings[n]:
-                key, _, value = setting.partition("=")
-                try:
-                    number = int(value, 0)
-                except ValueError:
-                    print(f"motiontool run: --set needs [ID:]NAME=VALUE with a whole number, got '{setting}'",
-                          file=err)
-                    return EXIT_COMPILE
-                link.write_parameter(key.strip(), number)
-            for spec in inputs[n]:
-                m = _INPUT.match(spec.strip())
-                if not m:
-                    print(f"motiontool run: --input needs [ID:]N=V or [ID:]N=V@T (ms), got '{spec}'", file=err)
-                    return EXIT_COMPILE
-                link.call("schedule_input", number=int(m.group(1)), value=int(m.group(2)),
-                          time_ms=int(m.group(3) or 0))
+            if not prepare_link(link, config, settings[n], inputs[n], options, err, node_ids=True):
+                return EXIT_COMPILE
             if options.trace:
                 link.call("stream", signals=options.signals, interval_ms=options.trace_interval_ms)
         for n in nodes:
