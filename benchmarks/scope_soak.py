@@ -22,14 +22,8 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 sys.path.insert(0, os.path.dirname(__file__))
 
 from PySide6.QtCore import QTimer  # noqa: E402
-from PySide6.QtWidgets import QApplication  # noqa: E402
 
-from motiontool.aposs.driver import compile_source  # noqa: E402
-from motiontool.comms.embedded import EmbeddedLink  # noqa: E402
-from motiontool.scope.acquisition import FreeRun, new_curve  # noqa: E402
-from motiontool.scope.curves import Group, Scope  # noqa: E402
-from motiontool.scope.ui.window import ScopeWindow  # noqa: E402
-from scope_stream import PROGRAM, SIGNALS, Relay, rss_mb  # noqa: E402
+from scope_stream import build, rss_mb  # noqa: E402
 
 GROUPS = 4
 CAPACITY = 20_000       # samples per curve, as scope_stream.py
@@ -39,31 +33,14 @@ def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--seconds", type=float, default=600.0)
     args = parser.parse_args()
-    app = QApplication.instance() or QApplication(sys.argv)
-    scope = Scope("free_run")
-    scope.settings.default_samples = CAPACITY
-    window = ScopeWindow(None, "free_run", scope=scope, ask=False)
-    window.resize(1280, 720)
-    image = compile_source(PROGRAM, "move.m").image.to_bytes()
-    relay = Relay()
-    links, runs, last_time = [], [], {}
+    app, scope, window, links, runs, relay = build(GROUPS, CAPACITY)
+    last_time = {}
     counts = {"gaps": 0, "crash": 0, "samples": 0, "frames": 0}
 
     def failed(where: str) -> None:
         counts["crash"] += 1
         if counts["crash"] <= 3:
             print(f"soak: exception in {where}:\n{traceback.format_exc()}", file=sys.stderr)
-
-    for k in range(GROUPS):
-        group = scope.add_group(Group(f"Group {k + 1}", controller=k + 1))
-        for s in SIGNALS:
-            new_curve(scope, s, group.name, "free_run", name=f"{k + 1}: {s}")
-        link = EmbeddedLink(realtime_factor=1.0)
-        link.download(image)
-        link.start()
-        links.append(link)
-        runs.append(FreeRun(scope, link, group.name))
-        link.subscribe(lambda e, k=k: relay.packet.emit(k, e.data) if e.kind == "samples" else None)
 
     def on_packet(k, data):
         try:

@@ -41,30 +41,38 @@ def rss_mb() -> float:
         return int(f.read().split()[1]) * resource.getpagesize() / 2**20
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--seconds", type=float, default=60.0)
-    args = parser.parse_args()
+def build(groups: int = 4, capacity: int = 20_000):
+    """The set-up the stream benchmarks share (scope_soak.py too): one oscilloscope window and `groups`
+    embedded controllers at real time, each running PROGRAM and streaming one Free Run group of SIGNALS; their
+    packets reach the GUI thread through `relay` (connect to relay.packet, then start the runs)."""
     app = QApplication.instance() or QApplication(sys.argv)
     scope = Scope("free_run")
-    scope.settings.default_samples = 20_000
+    scope.settings.default_samples = capacity
     window = ScopeWindow(None, "free_run", scope=scope, ask=False)
     window.resize(1280, 720)
     image = compile_source(PROGRAM, "move.m").image.to_bytes()
     relay = Relay()
-    links, runs, last_time = [], [], {}
-    gaps = [0]
-    for k in range(4):
+    links, runs = [], []
+    for k in range(groups):
         group = scope.add_group(Group(f"Group {k + 1}", controller=k + 1))
         for s in SIGNALS:
             new_curve(scope, s, group.name, "free_run", name=f"{k + 1}: {s}")
         link = EmbeddedLink(realtime_factor=1.0)
         link.download(image)
         link.start()
-        run = FreeRun(scope, link, group.name)
         links.append(link)
-        runs.append(run)
+        runs.append(FreeRun(scope, link, group.name))
         link.subscribe(lambda e, k=k: relay.packet.emit(k, e.data) if e.kind == "samples" else None)
+    return app, scope, window, links, runs, relay
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--seconds", type=float, default=60.0)
+    args = parser.parse_args()
+    app, scope, window, links, runs, relay = build()
+    last_time = {}
+    gaps = [0]
 
     def on_packet(k, data):
         t = data["time_ms"]
