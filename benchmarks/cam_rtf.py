@@ -25,17 +25,22 @@ def program(size: int) -> str:
             f"PULSVEL 37236\nSYNCC 0\nSYNCCSTART 0\nWAITI 8 ON\n")
 
 
-def measure(interpolation: bool) -> float:
-    curve = Curve("stamping", 4000, POINTS, interpolation=interpolation, intervals=40)
-    values = encode(curve)
-    result = compile_source(program(len(values)), "cam_rtf.m")
-    assert result.ok
-    link = EmbeddedLink()
+def start_cam_axis(link, values: list[int], source: str, settings: dict) -> None:
+    """Load the curve array `stamping`, the settings and the program into one controller and start it
+    (kernel_rtf.py uses it for each of its 8 axes)."""
+    result = compile_source(source, "cam_rtf.m")
+    assert result.ok, [d.format() for d in result.diagnostics]
     link.call("restore_arrays", arrays=[{"name": "stamping", "values": values}])
-    for key, value in SETTINGS.items():
+    for key, value in settings.items():
         link.write_parameter(key, value)
     link.download(result.image.to_bytes())
     link.start()
+
+
+def measure(interpolation: bool) -> float:
+    values = encode(Curve("stamping", 4000, POINTS, interpolation=interpolation, intervals=40))
+    link = EmbeddedLink()
+    start_cam_axis(link, values, program(len(values)), SETTINGS)
     link.advance(2000)  # engaged and up to speed
     controller = link.service.controller
     assert controller.axis.mode == "cam", controller.axis.mode

@@ -12,6 +12,7 @@
 
 import time
 
+from cam_rtf import start_cam_axis
 from motiontool.aposs.driver import compile_source
 from motiontool.camcurve import Curve, FixPoint, encode
 from motiontool.comms.bus import EmbeddedBus
@@ -60,14 +61,7 @@ def measure_cam_axes(axes: int = CAM_AXES) -> float:
     values = encode(Curve("stamping", 4000, CAM_POINTS, interpolation=False, intervals=40))
     bus = EmbeddedBus(range(1, axes + 1), master_node=1)
     for node in bus.nodes:
-        result = compile_source(cam_program(len(values), node == 1), f"cam{node}.m")
-        assert result.ok
-        link = bus.link(node)
-        link.call("restore_arrays", arrays=[{"name": "stamping", "values": values}])
-        for key, value in CAM_SETTINGS.items():
-            link.write_parameter(key, value)
-        link.download(result.image.to_bytes())
-        link.start()
+        start_cam_axis(bus.link(node), values, cam_program(len(values), node == 1), CAM_SETTINGS)
     bus.advance(2000)  # engaged and up to speed
     controllers = [bus.simulation[n] for n in bus.nodes]
     assert all(c.axis.mode == "cam" for c in controllers), [c.axis.mode for c in controllers]
