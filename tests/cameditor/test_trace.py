@@ -8,7 +8,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from motiontool.cameditor.trace import TraceError, guess_columns, parse_trace, read_trace, wrap
+from motiontool.cameditor.trace import TraceError, TraceTable, guess_columns, parse_trace, read_trace, wrap
 from motiontool.headless import _write_csv
 from motiontool.scope.curves import Curve, Group, Scope, Source
 from motiontool.scope.export import export_csv_text
@@ -125,3 +125,16 @@ def test_the_simulated_controller_follows_a_law_curve(tmp_path):
     deviation = np.abs(y[ok] - profile(curve).slave(x[ok]))
     assert np.max(deviation) < 25  # UU, of a 1000 UU rise: the simulated axis' tracking error
     assert np.median(deviation) < 5
+
+
+def test_a_wrapping_master_on_another_time_base_is_not_interpolated_across_the_wrap():
+    """A scope master that counts modulo the cycle (CMASTERCPOS, 3590 -> 10 at the wrap) recorded on other
+    times than the slave: with the cycle given it is unwrapped before it is interpolated, so the sample between
+    3590 and 10 is 3600 (= 0 of the next cycle), not an invented mid-cycle 1800."""
+    table = TraceTable("scope.csv", "scope", {"M": (np.array([0.0, 2.0]), np.array([3590.0, 10.0])),
+                                              "S": (np.array([1.0]), np.array([5.0]))})
+    assert table.master_slave("M", "S")[0].tolist() == [1800.0]  # without the cycle: plain interpolation
+    m, _ = table.master_slave("M", "S", cycle=3600)
+    assert m.tolist() == [3600.0]
+    x, _ = wrap(m, [5.0], 3600)
+    assert x.tolist() == [0.0]

@@ -54,9 +54,10 @@ class TraceTable:
     def names(self) -> list[str]:
         return list(self.columns)
 
-    def master_slave(self, master: str, slave: str) -> tuple[np.ndarray, np.ndarray]:
+    def master_slave(self, master: str, slave: str, cycle: float | None = None) -> tuple[np.ndarray, np.ndarray]:
         """Master and slave values at the slave's sample times (a scope master on another time base is
-        interpolated linearly onto them)."""
+        interpolated linearly onto them). ``cycle``: the master's cycle length in the column's own units; a master
+        that wraps at it is unwrapped first, so no value is interpolated across a wrap."""
         for name in (master, slave):
             if name not in self.columns:
                 raise TraceError(f"no column {name!r} (columns: {', '.join(self.names)})", 0, self.source)
@@ -66,6 +67,8 @@ class TraceTable:
         inside = (ts >= tm[0]) & (ts <= tm[-1])
         if not inside.any():
             raise TraceError(f"the columns {master!r} and {slave!r} do not overlap in time", 0, self.source)
+        if cycle:
+            m = unwrap(m, cycle)
         return np.interp(ts[inside], tm, m), s[inside]
 
 
@@ -192,6 +195,19 @@ def guess_columns(names: list[str]) -> tuple[str | None, str | None]:
     return master, pick(SLAVE_NAMES, master)
 
 
+def unwrap(master, length: float) -> np.ndarray:
+    """A master that wraps at its cycle (CMASTERCPOS) as a continuous position: a step of more than half a
+    cycle between two samples that both lie inside 0..length is taken as a wrap."""
+    m = np.asarray(master, dtype=float)
+    if len(m) < 2:
+        return m
+    step = np.diff(m)
+    in_cycle = (m >= 0) & (m <= length)
+    wrapped = (np.abs(step) > length / 2) & in_cycle[:-1] & in_cycle[1:]
+    wraps = np.where(wrapped, np.sign(step), 0.0)
+    return m - length * np.concatenate([[0.0], np.cumsum(wraps)])
+
+
 def wrap(master, slave, master_length: float, slave_length: float = 0.0, master_scale: float = 1.0,
          slave_scale: float = 1.0, slave_offset: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """Slave over master modulo the master cycle: x = M mod L, y = S − ⌊M/L⌋·slave_length − offset, with
@@ -201,13 +217,7 @@ def wrap(master, slave, master_length: float, slave_length: float = 0.0, master_
     of more than half a cycle between two samples that both lie inside 0..L is taken as a wrap."""
     if not master_length > 0:
         raise ValueError("the master cycle length must be > 0")
-    m = np.asarray(master, dtype=float) * master_scale
-    if len(m) > 1:
-        step = np.diff(m)
-        in_cycle = (m >= 0) & (m <= master_length)
-        wrapped = (np.abs(step) > master_length / 2) & in_cycle[:-1] & in_cycle[1:]
-        wraps = np.where(wrapped, np.sign(step), 0.0)
-        m = m - master_length * np.concatenate([[0.0], np.cumsum(wraps)])
+    m = unwrap(np.asarray(master, dtype=float) * master_scale, master_length)
     s = np.asarray(slave, dtype=float) * slave_scale
     cycle = np.floor(m / master_length)
     x = np.clip(m - cycle * master_length, 0.0, master_length)  # (rounding at the cycle's ends)

@@ -124,6 +124,9 @@ class TraceOverlay:
             self.legend.hide()
             return
         s = self.settings
+        if s["master_scale"]:  # unwrap before aligning time bases (the cycle in the column's own units)
+            self.master, self.slave = self.table.master_slave(s["master"], s["slave"],
+                                                              curve.master_length / s["master_scale"])
         x, y = wrap(self.master, self.slave, curve.master_length, curve.slave_length, s["master_scale"],
                     s["slave_scale"], s["slave_offset"])
         self.item.setData(x, y)
