@@ -125,3 +125,17 @@ def test_a_hidden_curve_info_card_catches_up_when_shown(qtbot, editor):
     assert _labels(editor.curve_info) == _labels(card) != before
     editor.diagram.box.point_dragged.emit(100, p.master, p.slave + 500, True)
     assert editor.curve() == _full(editor.curve()) and editor.curve().fix_points[100].slave == p.slave + 500
+
+
+def test_the_slave_marker_follows_a_drag_that_changes_the_slave_length(qtbot, editor):
+    """The slave marker is a slave position reduced over the slave length [DG L3762-3765]: dragging the last
+    point changes the slave length, so the marker line moves with the drag, not only on release."""
+    points = (FixPoint(0, 0), FixPoint(1500, 1200, "T"), FixPoint(2500, 2400, "T"), FixPoint(4000, 3600))
+    curve = dataclasses.replace(Curve("marker", 4000, points, intervals=40), slave_marker_pos=3500)
+    _open(editor, curve)
+    editor.options.boxes["slave_marker"].setChecked(True)
+    for slave in (3400, 3000):
+        editor.diagram.box.point_dragged.emit(3, 4000, slave, False)
+        assert editor.curve().slave_length == slave
+        assert editor.diagram.slave_marker_line.value() == editor.overlay().slave_marker_at
+    assert editor.diagram.slave_marker_line.value() != 3500  # reduced over the new slave length

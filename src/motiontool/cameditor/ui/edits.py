@@ -168,8 +168,9 @@ class EditsMixin:
             # a drag's curve is asked about only now: built once, without hashing its points into the shared
             # cache, taking the segment kinds over from the shown curve (only point ``index`` moved)
             profile(moved, cache=False, moved_from=(profile(shown), index))
-            if self._drag_overlay is None or self._drag_overlay[0] != moved.master_length:
-                self._drag_overlay = (moved.master_length, self.overlay())  # options cannot change mid-drag
+            lengths = (moved.master_length, moved.slave_length)  # what the overlay depends on besides the options
+            if self._drag_overlay is None or self._drag_overlay[0] != lengths:
+                self._drag_overlay = (lengths, self.overlay())  # options cannot change mid-drag
             self.diagram.show_curve(moved, self._drag_overlay[1], dragging=True)
         else:
             self.diagram.move_marker(index, p.master, p.slave)

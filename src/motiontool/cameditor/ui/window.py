@@ -74,7 +74,7 @@ class CamEditor(EditsMixin, QMainWindow):
         self.dialog = None  # the open non-blocking dialog, if any
         self.context_menu = None
         self._drag_start: Curve | None = None
-        self._drag_overlay = None  # (master length, Overlay) during a drag
+        self._drag_overlay = None  # ((master length, slave length), Overlay) during a drag
         self._follow: tuple[Curve, int, bool] | None = None  # a drag's state the table / Curve Info lag behind
         self._follow_next = 0.0  # monotonic time of their next update
         self._follow_timer = QTimer(self)
