@@ -113,6 +113,20 @@ def test_correction_start_equal_to_end_corrects_at_once():
     assert ctl.axis.sync.locked and abs(ctl.axis.cpos - ctl.axis.apos) <= 15
 
 
+def test_a_correction_added_at_once_is_caught_up_within_acc():
+    """DG 1532-1541 / decision K33: without a window the correction is added at once and the slave catches it up
+    within its limits — the commanded position must not jump by the whole correction in one tick (a small one of
+    about 20 MU here: larger than ACC allows per tick, smaller than VEL)."""
+    run = run_cam("SYNCCMM", line(correction_start=0, correction_end=0, max_correction=0), master=boxes(offset=3030.0),
+                  ms=5)
+    ctl = run.controller
+    pg, mo = ctl.axis.profile, ctl.axis.sync
+    limit = max(mo.acc, mo.dec) * (1 + 1e-9) + 1e-9
+    steps = trace(run, 600, lambda c: (pg.velocity, c.axis.sync.cam.mu_shift))
+    assert any(b[1] != a[1] for (_, a), (_, b) in zip(steps, steps[1:], strict=False))  # the correction came
+    assert max(abs(b[0] - a[0]) for (_, a), (_, b) in zip(steps, steps[1:], strict=False)) <= limit
+
+
 def test_synccmm_tolerance_window_ignores_noise_and_flags_the_missing_box():
     """DG 9624 (33-21, "[qc] or in CAM mode [MU]"): "only those markers are accepted which are within the window. If
     there is no marker within the tolerance window the corresponding flag (SYNCSTAT) is set and no marker correction
