@@ -55,6 +55,7 @@ from motiontool.kernel.cam import CATCHUP, CURVE, ENGAGE, _blend
 from motiontool.kernel.markers import MMERR, MMHIT, SMERR, SMHIT, SYNCSTAT_FAULT, _Side
 
 MASTER, SLAVE = "master", "slave"
+HISTORY = 1000  # evaluations kept in CamMarkers.corrections / errors
 _ENGAGED = (CURVE, CATCHUP, ENGAGE)  # slave markers are evaluated and realised only while the slave is on the curve
 
 
@@ -77,8 +78,10 @@ class CamMarkers:
         self.pending = 0.0        # corrections (MU / UU) waiting for the correction window
         self.run: list | None = None  # [amount, u0, realised]: the correction running through the window
         self.applied = 0.0        # all corrections realised so far
-        self.corrections: list[float] = []   # evaluated corrections after clamping (MU / UU), for tests
-        self.errors: list[float] = []        # the errors measured at the evaluated markers (MU / UU)
+        # the last HISTORY evaluated corrections after clamping and measured errors (MU / UU), for tests and
+        # diagnosis; bounded, as a SYNCC may run for days
+        self.corrections: list[float] = []
+        self.errors: list[float] = []
         self._reset()
         self.read_parameters()
 
@@ -197,7 +200,7 @@ class CamMarkers:
         realised since or is still planned; count READY/FAULT (DG 9723-9761), clamp (DG 10004-10032)."""
         needed = -error if self.side == MASTER else error
         x = applied_then + needed - self.applied - self._outstanding()
-        self.errors.append(error)
+        _keep(self.errors, error)
         scale = self._qc_per_unit()
         if self.evaluated:  # the start correction is expected to be large; only later evaluations count
             if abs(x) * scale <= abs(self.motion.accuracy):
@@ -211,12 +214,12 @@ class CamMarkers:
         self.evaluated = True
         maxcorr = self._p("SYNCMMAXCORR")
         if maxcorr < 0:
-            self.corrections.append(0.0)
+            _keep(self.corrections, 0.0)
             return  # marker correction switched off: monitoring only
         limits = [lim for lim in (self.motion.cam.curve.decoded.max_correction, maxcorr / scale) if lim > 0]
         if limits:
             x = max(-min(limits), min(min(limits), x))
-        self.corrections.append(x)
+        _keep(self.corrections, x)
         self.pending += x
 
     # --- realising (called by CamMotion.step before the target is computed) --------------------------------
@@ -270,3 +273,9 @@ class CamMarkers:
         else:
             mo.base += delta * mo.k
             mo.cam.slave_base_qc = mo.base
+
+
+def _keep(history: list[float], value: float) -> None:
+    history.append(value)
+    if len(history) > HISTORY:
+        del history[0]
