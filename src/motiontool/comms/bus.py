@@ -13,7 +13,7 @@ from collections.abc import Iterable, Mapping
 from typing import Any
 
 from motiontool.comms.link import Link
-from motiontool.comms.protocol import LinkError, LinkEvent, Request, Response
+from motiontool.comms.protocol import LinkError, Request
 from motiontool.comms.service import ControllerService
 from motiontool.kernel.master import MasterConfig
 from motiontool.kernel.plant import PlantConfig
@@ -30,10 +30,7 @@ class NodeLink(Link):
         self.bus = bus
         self.node = node
         self.service = service
-        service.listeners.append(self._deliver)
-
-    def _deliver(self, event: LinkEvent) -> None:
-        self._publish(event)
+        service.listeners.append(self._publish)
 
     @property
     def alive(self) -> bool:
@@ -45,7 +42,7 @@ class NodeLink(Link):
         if request.op == "advance":  # one clock for the whole bus
             self.bus.advance(int(request.args.get("ms", 0)))
             return None
-        return _unwrap(self.service.handle(request))
+        return self.service.handle(request).result()
 
 
 class EmbeddedBus:
@@ -72,9 +69,3 @@ class EmbeddedBus:
 
     def close(self) -> None:
         self.closed = True
-
-
-def _unwrap(response: Response) -> Any:
-    if not response.ok:
-        raise LinkError(response.error, response.error_number)
-    return response.value

@@ -18,7 +18,7 @@ import time
 from typing import Any
 
 from motiontool.comms.link import Link
-from motiontool.comms.protocol import LinkError, LinkEvent, Request, Response
+from motiontool.comms.protocol import LinkError, LinkEvent, Request
 from motiontool.comms.service import ControllerService
 from motiontool.kernel.controller import Controller
 from motiontool.kernel.master import MasterConfig
@@ -32,7 +32,7 @@ class EmbeddedLink(Link):
                  master: MasterConfig | None = None):
         super().__init__()
         self.service = ControllerService(Controller(plant, master=master))
-        self.service.listeners.append(self._deliver)
+        self.service.listeners.append(self._publish)
         self.realtime_factor = realtime_factor
         self._requests: queue.Queue = queue.Queue()
         self._stop = threading.Event()
@@ -45,9 +45,6 @@ class EmbeddedLink(Link):
             sys.setswitchinterval(min(sys.getswitchinterval(), 0.0005))
             self._thread = threading.Thread(target=self._run, name="mco305-kernel", daemon=True)
             self._thread.start()
-
-    def _deliver(self, event: LinkEvent) -> None:
-        self._publish(event)
 
     @property
     def alive(self) -> bool:
@@ -65,7 +62,7 @@ class EmbeddedLink(Link):
                 response = done.get(timeout=10.0)
             except queue.Empty:
                 raise LinkError("Timeout: no reply from controller") from None
-        return _unwrap(response)
+        return response.result()
 
     # --- kernel thread ---------------------------------------------------------------------------------
     def _run(self) -> None:
@@ -98,9 +95,3 @@ class EmbeddedLink(Link):
         self._stop.set()
         if self._thread is not None:
             self._thread.join(timeout=2.0)
-
-
-def _unwrap(response: Response) -> Any:
-    if not response.ok:
-        raise LinkError(response.error, response.error_number)
-    return response.value

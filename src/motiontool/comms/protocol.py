@@ -72,6 +72,12 @@ class Response:
     def to_dict(self) -> dict:
         return asdict(self)
 
+    def result(self) -> Any:
+        """The value, or the controller's error raised as LinkError."""
+        if not self.ok:
+            raise LinkError(self.error, self.error_number)
+        return self.value
+
 
 @dataclass
 class Status:

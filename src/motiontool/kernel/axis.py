@@ -170,16 +170,15 @@ class Axis:
         return integral_term
 
     def _monitor(self) -> None:
+        """The tracking error is beyond POSERR this tick (tick() tests that inline): error 108 now or after
+        POSERRTIME ms of it."""
         g = self.gains
-        if abs(self.profile.position - self.apos) > g.poserr:
-            if g.poserrtime <= 0:
-                raise ControllerError(108, f"tracking error {self.profile.position - self.apos:.0f} qc > POSERR "
-                                           f"{g.poserr}")
-            self._poserr_count += 1  # DG 8913-8933: checked every 20 ms; here every tick, scaled
-            if self._poserr_count > g.poserrtime:
-                raise ControllerError(108, f"tracking error above POSERR for {g.poserrtime} ms")
-        else:
-            self._poserr_count = 0
+        if g.poserrtime <= 0:
+            raise ControllerError(108, f"tracking error {self.profile.position - self.apos:.0f} qc > POSERR "
+                                       f"{g.poserr}")
+        self._poserr_count += 1  # DG 8913-8933: checked every 20 ms; here every tick, scaled
+        if self._poserr_count > g.poserrtime:
+            raise ControllerError(108, f"tracking error above POSERR for {g.poserrtime} ms")
 
     # --- motion commands (targets in the axis frame, qc) -----------------------------------------------
     def limits(self, vel: float, acc: float, dec: float, ramp_type: int, jerk: tuple) -> Limits:

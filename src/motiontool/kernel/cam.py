@@ -175,10 +175,8 @@ class CamState:
         self.mu_shift = 0.0  # SYNCCMM corrections and the SYNCMSTART 2000 start (MU, kernel/cam_markers.py)
 
     def master_position(self) -> float:
-        """Unwrapped curve master position M (MU)."""
-        data = self.data
-        p, a = data.mc_ref
-        return p + (self.master.mapos + data.sync_shift - a) * self.facts / self.factm + self.mu_shift
+        """Unwrapped curve master position M (MU). (CamMotion.step computes it inline: keep the two alike.)"""
+        return self.master_position_at(self.master.mapos)
 
     def master_position_at(self, mapos: int) -> float:
         """M when MAPOS was `mapos` (a latched master marker), with the corrections made so far."""

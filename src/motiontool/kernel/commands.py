@@ -26,7 +26,6 @@ def command(*names):
 # --- waits ---------------------------------------------------------------------------------------------
 class Until(Wait):
     def __init__(self, condition, value=None, resumable=True, on_abandon=None):
-        self.condition = condition
         self.done = condition  # Wait.done, checked every tick: the condition itself (one call less per tick)
         self.value = value
         self.resumable = resumable
