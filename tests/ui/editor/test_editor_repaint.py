@@ -118,3 +118,17 @@ def test_the_screen_always_shows_what_a_full_repaint_shows(qtbot, editor):
         step()
         QApplication.processEvents()
         assert shown(editor) == editor.grab().toImage(), f"step {number}: stale pixels on the screen"
+
+
+def test_a_jump_to_a_visible_line_repaints_both_line_numbers(qtbot, editor):
+    """goto_line, Find Next, the outline and bookmarks move the caret with setTextCursor: Qt asks to repaint the
+    old and the new caret line before it reports the move. The margin must still show the new caret line's
+    number (and no longer the old one's) as a full repaint does."""
+    editor.setPlainText(PROGRAM)
+    editor.show()
+    qtbot.waitExposed(editor)
+    editor.goto_line(3)
+    assert shown(editor) == editor.grab().toImage()
+    for target in (12, 5, 20):  # all on screen
+        editor.goto_line(target)
+        assert shown(editor) == editor.grab().toImage(), f"line {target}: stale line numbers in the margin"

@@ -168,11 +168,17 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, QPlainT
         cursor = self.textCursor()
         state = (self.firstVisibleBlock().blockNumber(), self.contentOffset().y(), self.blockCount(),
                  cursor.blockNumber())
-        line = self.blockBoundingGeometry(cursor.block()).translated(self.contentOffset()).toAlignedRect()
-        if state == self._gutter_state and (rect.contains(self.viewport().rect())
-                                            or line.adjusted(0, -2, 0, 2).contains(rect)):  # Qt adds 1 px
+        if state != self._gutter_state:
+            # first line, line count or caret line changed: line numbers change beyond this request (setTextCursor
+            # asks for the old and the new caret line before it reports the move)
+            self._gutter_state = state
+            self.gutter.update()
             return
-        self._gutter_state = state
+        if rect.contains(self.viewport().rect()):
+            return
+        line = self.blockBoundingGeometry(cursor.block()).translated(self.contentOffset()).toAlignedRect()
+        if line.adjusted(0, -2, 0, 2).contains(rect):  # Qt adds 1 px
+            return
         self.gutter.update(0, rect.y(), self.gutter.width(), rect.height())
 
     def resizeEvent(self, event: QResizeEvent) -> None:  # noqa: N802 (Qt override)
