@@ -110,6 +110,24 @@ def test_the_trigger_sees_the_selected_bit():
     assert y.size == 50 and set(y[:10]) == {0} and set(y[10:]) == {1}
 
 
+def test_a_selection_changed_while_free_run_records_applies_to_the_next_packets():
+    """ide-spec 6.43: the byte/bit selection is a curve property; changed in Properties while Free Run runs, the
+    samples recorded from then on hold the new field (as Polling, which reads it per poll)."""
+    link = EmbeddedLink()
+    scope = Scope("free_run")
+    group = default_group(scope, "free_run").name
+    curve = new_curve(scope, "INPUTS", group, "free_run")
+    run = FreeRun(scope, link, group, subscribe=True)
+    link.call("set_input", number=2, value=1)   # INPUTS = 0b10: bit 1 is 0, bit 2 is 1
+    run.start()
+    link.advance(100)
+    assert set(curve.raw()[1]) == {2}
+    curve.source.select = "2"
+    curve.buffer.clear()
+    link.advance(100)
+    assert set(curve.raw()[1]) == {1}
+
+
 def test_polled_and_single_shot_curves_store_the_selection():
     link = EmbeddedLink()
     scope = Scope("polling")

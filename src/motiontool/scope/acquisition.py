@@ -70,7 +70,6 @@ class FreeRun:
         self._subscribed = subscribe
         self._signals: list[str] = []
         self._curves: list[Curve] = []
-        self._selections: list = []     # per column: a select.Selection or None
         # Triggered capture (beyond the manual): (curve name, Trigger); single = stop after one capture,
         # else re-arm and show the newest capture, like a scope's "normal" mode.
         self.trigger: tuple[str, Trigger] | None = None
@@ -91,7 +90,6 @@ class FreeRun:
                 c.buffer.clear()
         self._curves = curves   # fixed for the run: columns of the stream
         self._signals = [c.source.signal for c in curves]
-        self._selections = [parse_selection(c.source.select) for c in curves]
         self.capture = None
         if self.trigger is not None:
             name, trig = self.trigger
@@ -123,9 +121,12 @@ class FreeRun:
             return
         t = np.asarray(data["time_ms"], dtype=float)
         v = np.asarray(data["values"], dtype=float).reshape(t.size, len(self._signals))
-        if any(self._selections):   # byte/word/bit curves: select before the trigger sees the values
+        # byte/word/bit curves: select before the trigger sees the values; read per packet, as Properties may
+        # change a curve's selection while it runs
+        selections = [parse_selection(c.source.select) for c in self._curves]
+        if any(selections):
             v = v.copy()
-            for j, sel in enumerate(self._selections):
+            for j, sel in enumerate(selections):
                 if sel is not None:
                     v[:, j] = sel.apply(v[:, j])
         self.received += 1

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -48,6 +49,7 @@ class Selection:
         return out
 
 
+@lru_cache(maxsize=256)  # asked per packet and per poll for each curve; a Selection is immutable
 def parse_selection(text: str | None) -> Selection | None:
     """"b2", ".b2", "sw1", "3" … → Selection; None or "" → None (the whole value). ValueError otherwise."""
     if text is None:
