@@ -229,3 +229,25 @@ def test_syncmstart_2000_starts_counting_the_curve_master_position_at_the_master
     run.advance(500)
     assert ctl.read_pseudo(0, 4230) == pytest.approx(ctl.master.mapos - 3500, abs=11)
     assert ctl.axis.sync.markers.corrections == []                           # plain SYNCC: no correction
+
+
+def test_a_sync_command_in_cam_mode_switches_the_marker_correction_it_names():
+    """DG 7261-7263: SYNCC/SYNCCMM/SYNCCMS n in CAM mode start a new cycle count; the marker correction is the one
+    the command names (decision K45): SYNCCMM after SYNCC corrects from the next marker on, SYNCC switches it off."""
+    values = encode(line())
+    link = EmbeddedLink(PlantConfig(), master=boxes())
+    link.call("restore_arrays", arrays=[{"name": "line", "values": values}])
+    program = (f"DIM line[{len(values)}]\nSETCURVE line\nDEFMCPOS 0\nSYNCC 0\nSYNCCSTART 0\nWAITT 1500\n"
+               "SYNCCMM 0\nWAITT 4000\nSYNCC 0\nWAITT 100000000\n")
+    run = start(program, settings={**UNITS, "SYNCMPULSM": 2000, "SYNCMPULSS": 2000}, link=link)
+    run.advance(1000)
+    ctl = run.controller
+    assert ctl.axis.sync.markers is None                      # plain SYNCC: no marker handling
+    run.advance(1000)
+    markers = ctl.axis.sync.markers
+    assert markers is not None and markers.side == "master"
+    run.advance(3000)
+    assert markers.corrections and ctl.axis.sync.cam.mu_shift != 0   # the late boxes are corrected
+    run.advance(1000)
+    assert ctl.axis.sync.markers is None and ctl.axis.mode == "cam"
+

@@ -175,8 +175,10 @@ def _syncc(ctl, vm, args, side: str | None = None):
     (kernel/cam_markers.py)."""
     _motion_allowed(ctl)
     motion = _cam_motion(ctl)
-    if motion is not None:  # already in CAM mode: a new cycle count from now
+    if motion is not None:  # already in CAM mode: a new cycle count from now, and the marker correction it names
         motion.cycles, motion.cycles_done, motion._final = max(0, args[0]), 0, False
+        if side != (motion.markers.side if motion.markers is not None else None):  # decision K45
+            motion.markers = CamMarkers(ctl, motion, side, 0) if side is not None else None
         return
     cam = _cam_state(ctl, "SYNCC")
     data = ctl.program_data
