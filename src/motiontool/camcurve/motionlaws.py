@@ -47,11 +47,10 @@ class _SinePiece:
 
 @dataclass(frozen=True)
 class MotionLaw:
-    """One normalised rest-to-rest law.  ``breaks``: where its definition changes (piece boundaries)."""
+    """One normalised rest-to-rest law."""
 
     code: str  # the fix point type
     name: str  # shown in the editor's popup
-    breaks: tuple[float, ...]
     pieces: int  # quintic pieces per segment in the profile
     _sine: tuple[_SinePiece, ...] = ()
 
@@ -113,20 +112,15 @@ def _piece_value(p: _SinePiece, t, v_a: float, s_a: float, nu: int):
     raise ValueError(f"derivative order {nu} (0..3)")
 
 
-_TABLES: dict[tuple[_SinePiece, ...], list] = {}
-
-
+@functools.cache
 def _integrated(pieces: tuple[_SinePiece, ...]) -> list:
     """[(piece, v at ua, s at ua), …, (None, v(1), s(1))], integrating piece by piece from rest at u = 0."""
-    table = _TABLES.get(pieces)
-    if table is None:
-        table, v, s = [], 0.0, 0.0
-        for p in pieces:
-            table.append((p, v, s))
-            t = p.ub - p.ua
-            v, s = float(_piece_value(p, t, v, s, 1)), float(_piece_value(p, t, v, s, 0))
-        table.append((None, v, s))
-        _TABLES[pieces] = table
+    table, v, s = [], 0.0, 0.0
+    for p in pieces:
+        table.append((p, v, s))
+        t = p.ub - p.ua
+        v, s = float(_piece_value(p, t, v, s, 1)), float(_piece_value(p, t, v, s, 0))
+    table.append((None, v, s))
     return table
 
 
@@ -143,16 +137,14 @@ _MOD_TRAPEZOID = (_SinePiece(0, _E, 0, 1, 4 * _PI, 0), _SinePiece(_E, 3 * _E, 1,
                   _SinePiece(3 * _E, 5 * _E, 0, 1, 4 * _PI, 0.25), _SinePiece(5 * _E, 7 * _E, -1, 0, 4 * _PI, 0),
                   _SinePiece(7 * _E, 1, 0, 1, 4 * _PI, 0))
 
-_EIGHTHS = tuple(k / 8 for k in range(9))
 #: The laws by fix point type, in the order the editor offers them.
 LAWS: dict[str, MotionLaw] = {
-    "P345": MotionLaw("P345", "3-4-5 polynomial", (0.0, 1.0), 1),
-    "MSIN": MotionLaw("MSIN", "Modified sine", _EIGHTHS, 32, _MOD_SINE),
-    "CYCL": MotionLaw("CYCL", "Cycloid", _EIGHTHS, 32, _CYCLOID),
-    "MTRAP": MotionLaw("MTRAP", "Modified trapezoid", _EIGHTHS, 32, _MOD_TRAPEZOID),
-    "HARM": MotionLaw("HARM", "Simple harmonic", _EIGHTHS, 32, _HARMONIC),
-}
-LAW_TYPES = tuple(LAWS)
+    "P345": MotionLaw("P345", "3-4-5 polynomial", 1),
+    "MSIN": MotionLaw("MSIN", "Modified sine", 32, _MOD_SINE),
+    "CYCL": MotionLaw("CYCL", "Cycloid", 32, _CYCLOID),
+    "MTRAP": MotionLaw("MTRAP", "Modified trapezoid", 32, _MOD_TRAPEZOID),
+    "HARM": MotionLaw("HARM", "Simple harmonic", 32, _HARMONIC),
+}  # their codes are camcurve.model.LAW_TYPES (a test keeps the two alike)
 
 
 def segment(law: str, x0: float, x1: float, y0: float, y1: float, master, nu: int = 0):

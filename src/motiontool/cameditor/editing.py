@@ -84,7 +84,8 @@ def with_master_length(curve: Curve, points: tuple[FixPoint, ...], check: bool =
 
 
 def replace_points_unchecked(curve: Curve, points: tuple[FixPoint, ...]) -> Curve:
-    """A view of ``curve`` with other points, for the blocker check only (not validated)."""
+    """``curve`` with other points, not validated: for the blocker check, and for move_point's drag fast path
+    where the caller guarantees Curve.validate would pass (tests/cameditor/test_drag_fast_paths.py)."""
     clone = object.__new__(Curve)
     for f in dataclasses.fields(Curve):
         object.__setattr__(clone, f.name, getattr(curve, f.name))
@@ -126,11 +127,10 @@ def move_point(curve: Curve, index: int, master: float, slave: float, snap_on_gr
         if clamp:
             pts[index] = FixPoint(max(master, last_point_minimum(curve)), slave, pts[index].type)
         return with_master_length(curve, tuple(pts))
-    if _plain(master) and _plain(slave) and (index == 0 or pts[index - 1].master < master < pts[index + 1].master):
-        # the curve was valid and one inner point moved between its neighbours, keeping its type: every rule of
-        # Curve.validate still holds, so skip re-checking all points (a drag of a 10 000-point curve)
-        old = curve.fix_points
-        return replace_points_unchecked(curve, old[:index] + (pts[index],) + old[index + 1:])
+    if _plain(master) and _plain(slave):
+        # the curve was valid and one inner point moved between its neighbours (ensured above), keeping its type:
+        # every rule of Curve.validate still holds, so skip re-checking all points (a drag of a 10 000-point curve)
+        return replace_points_unchecked(curve, tuple(pts))
     return replace(curve, fix_points=tuple(pts))
 
 
