@@ -5,7 +5,8 @@ to a minimum torque. In order to prevent speed leaps in the case of repeated cur
 beginning and the end is equated." [DG L1356-1358].  Segment shapes [DG L3998-4022, ide-spec 4.35-4.37]:
 
 * straight (a T point and the next T/CZ/C3 point): a line, constant velocity, zero acceleration;
-* a run of consecutive curved (C) segments: ONE cubic spline through the run's points (scipy CubicSpline).
+* a run of consecutive curved (C) segments: ONE cubic spline through the run's points (camcurve.cubic, the
+  numbers of scipy's CubicSpline).
   Where the run borders a straight section its end is clamped to the line's slope, so velocity is continuous
   (C1) into the line; at the profile start/end the Type-of-Curve rule gives the boundary condition
   (``_boundary_gradients``);
@@ -29,9 +30,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.interpolate import CubicSpline, PPoly
+from scipy.interpolate import PPoly
 
-from motiontool.camcurve import motionlaws
+from motiontool.camcurve import cubic, motionlaws
 from motiontool.camcurve.model import CUBIC, LAW, LINE, SPLINE, TRAPEZOID, Curve, CurveType, StartStopPair
 
 _DEGREE = 5
@@ -67,10 +68,14 @@ def _trapezoid(h: float, y0: float, v0: float, y1: float, v1: float) -> tuple[li
     return [y0, v0, (vm - v0) / half / 2], [ym, vm, (v1 - vm) / half / 2]
 
 
-def _spline(xs: np.ndarray, ys: np.ndarray, left: float | None, right: float | None) -> CubicSpline:
-    """Cubic spline through a run; None = natural end (zero second derivative), a number = clamped slope."""
-    bc = ((2, 0.0) if left is None else (1, float(left)), (2, 0.0) if right is None else (1, float(right)))
-    return CubicSpline(xs, ys, bc_type=bc)
+def _spline(xs: np.ndarray, ys: np.ndarray, left: float | None, right: float | None) -> np.ndarray:
+    """Cubic spline through a run, as piece coefficients (4, pieces); None = natural end (zero second
+    derivative), a number = clamped slope."""
+    return cubic.coefficients(xs, ys, None if left is None else float(left), None if right is None else float(right))
+
+
+def _start_slope(xs: np.ndarray, c: np.ndarray) -> float:
+    return cubic.slope_at(c, xs, 0, xs[0])
 
 
 class CurveProfile:
@@ -111,7 +116,7 @@ class CurveProfile:
         breaks[-1] = self.x[-1]
         for first, cs in splines.items():  # whole spline runs at once (a curve may have 10 000 points)
             if first not in quintic_runs:
-                coeffs[_DEGREE - 3:, piece[first:first + cs.c.shape[1]]] = cs.c
+                coeffs[_DEGREE - 3:, piece[first:first + cs.shape[1]]] = cs
         quintic = np.zeros(n - 1, dtype=bool)
         quintic[list(quintic_runs)] = True
         for k in np.nonzero((kind_codes != _KIND_CODES[SPLINE]) | quintic)[0]:
@@ -138,24 +143,24 @@ class CurveProfile:
 
     # -- construction helpers ---------------------------------------------------------------------------------
     @staticmethod
-    def _spline_runs(spline: np.ndarray) -> list[list[int]]:
+    def _spline_runs(spline: np.ndarray) -> list[range]:
         """Maximal runs of consecutive spline segments (their indices), from the mask of spline segments."""
         edges = np.diff(np.concatenate([[0], spline.astype(np.int8), [0]]))
-        return [list(range(int(a), int(b))) for a, b in zip(np.nonzero(edges == 1)[0], np.nonzero(edges == -1)[0],
-                                                             strict=True)]
+        return [range(int(a), int(b)) for a, b in zip(np.nonzero(edges == 1)[0], np.nonzero(edges == -1)[0],
+                                                      strict=True)]
 
-    def _is_quintic(self, run: list[int]) -> bool:
+    def _is_quintic(self, run: range) -> bool:
         return len(run) == 1 and run[0] - 1 in self.line_slopes and run[0] + 1 in self.line_slopes
 
-    def _run_bc(self, run: list[int], gs: float | None, ge: float | None) -> tuple[float | None, float | None]:
+    def _run_bc(self, run: range, gs: float | None, ge: float | None) -> tuple[float | None, float | None]:
         left = self.line_slopes.get(run[0] - 1, gs) if run[0] > 0 else gs
         right = self.line_slopes.get(run[-1] + 1, ge) if run[-1] < len(self.kinds) - 1 else ge
         return left, right
 
-    def _run_points(self, run: list[int]) -> tuple[np.ndarray, np.ndarray]:
+    def _run_points(self, run: range) -> tuple[np.ndarray, np.ndarray]:
         return self.x[run[0]:run[-1] + 2], self.y[run[0]:run[-1] + 2]
 
-    def _run_spline(self, run: list[int], gs: float | None, ge: float | None) -> CubicSpline:
+    def _run_spline(self, run: range, gs: float | None, ge: float | None) -> np.ndarray:
         return _spline(*self._run_points(run), *self._run_bc(run, gs, ge))
 
     def _natural_end_slopes(self) -> tuple[float, float]:
@@ -163,7 +168,10 @@ class CurveProfile:
         first, last = self.runs[0], self.runs[-1]
         spline_first = self._run_spline(first, None, None)
         spline_last = spline_first if last is first else self._run_spline(last, None, None)  # one run: one solve
-        return float(spline_first(self.x[0], 1)), float(spline_last(self.x[-1], 1))
+        xs_last = self._run_points(last)[0]
+        # evaluated at the profile's ends, also when a run starts later or ends earlier (extrapolated)
+        return (cubic.slope_at(spline_first, self._run_points(first)[0], 0, self.x[0]),
+                cubic.slope_at(spline_last, xs_last, len(xs_last) - 2, self.x[-1]))
 
     def _boundary_gradients(self) -> tuple[float | None, float | None]:
         """Gradient imposed on a curved first/last segment by the Type of Curve [DG L3708-3729].
@@ -200,11 +208,11 @@ class CurveProfile:
         first = self.runs[0]
         xs, ys = self._run_points(first)
         if first[-1] == last_k:  # one run from start to end: solve g = s0(g), s0 affine in g
-            a = float(_spline(xs, ys, None, 0.0)(xs[0], 1))
-            b = float(_spline(xs, ys, None, 1.0)(xs[0], 1)) - a
+            a = _start_slope(xs, _spline(xs, ys, None, 0.0))
+            b = _start_slope(xs, _spline(xs, ys, None, 1.0)) - a
             g = a / (1.0 - b) if abs(1.0 - b) > 1e-12 else a
             return g, g
-        g = float(_spline(xs, ys, None, self._run_bc(first, None, None)[1])(xs[0], 1))
+        g = _start_slope(xs, _spline(xs, ys, None, self._run_bc(first, None, None)[1]))
         return g, g
 
     # -- evaluation -------------------------------------------------------------------------------------------
