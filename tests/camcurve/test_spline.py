@@ -108,3 +108,16 @@ def test_curvepos_example_passes_fix_points():
     curve = Curve("ex", 1000, pts, intervals=10)
     assert [slave(curve, p.master) for p in pts] == pytest.approx([0, 500, 300, 1200])
     assert velocity(curve, 0.0) == pytest.approx(velocity(curve, 999.999999), abs=1e-5)
+
+
+@settings(max_examples=200, deadline=None)
+@given(curves(), st.lists(st.floats(0.0, 1.0), max_size=30))
+def test_evaluation_on_known_pieces_is_the_ppoly_evaluation(curve, fractions):
+    """``at_pieces`` (the CAM diagram's samples of a dragged curve) gives exactly the numbers of the PPoly
+    evaluation, for curves with trapezoid and motion-law pieces too."""
+    prof = profile(curve)
+    xs = np.unique(np.concatenate([prof.x, np.array(fractions) * curve.master_length]))
+    below = np.searchsorted(prof.x, xs, side="right") - 1
+    pieces = prof.pieces(xs, below)
+    for nu in range(4):
+        assert np.array_equal(prof.at_pieces(xs, pieces, nu), prof._eval(xs, nu, False))

@@ -8,13 +8,15 @@ from __future__ import annotations
 import dataclasses
 
 import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from motiontool.camcurve.model import Curve, FixPoint
 from motiontool.camcurve.spline import CurveProfile, curve_info
 from motiontool.cameditor import editing
 from motiontool.cameditor.limits import slave_limits
 from motiontool.cameditor.ui.cards import CurveInfoCard
-from motiontool.cameditor.ui.diagram import CurveDiagram
+from motiontool.cameditor.ui.diagram import SAMPLES, CurveDiagram, samples
 from motiontool.cameditor.ui.edits import FOLLOW_INTERVAL
 from motiontool.cameditor.ui.window import Slot
 
@@ -139,3 +141,22 @@ def test_the_slave_marker_follows_a_drag_that_changes_the_slave_length(qtbot, ed
         assert editor.curve().slave_length == slave
         assert editor.diagram.slave_marker_line.value() == editor.overlay().slave_marker_at
     assert editor.diagram.slave_marker_line.value() != 3500  # reduced over the new slave length
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.one_of(st.integers(-50, 5050), st.floats(-50, 5050, allow_nan=False)), min_size=2,
+                max_size=60, unique=True),
+       st.sampled_from([1.0, 999.0, 1000.0, 4000.0, 4001.5]))
+def test_diagram_samples_merge_as_sort_and_search_would(points, length):
+    """The diagram's samples (even ones plus every fix point) are merged by position; the result is what sorting
+    and searching gives: the sorted union without repeats, and the last fix point at or before each sample."""
+    xp = np.unique(np.array(points, dtype=float))
+    if len(xp) < 2:
+        return
+    xp = np.concatenate([xp, np.linspace(0.0, length, SAMPLES)[[0, 7, -1]]])  # some on the even grid
+    xp = np.unique(xp)
+    xs, below = samples(xp, length)
+    expected = np.sort(np.concatenate([np.linspace(0.0, length, SAMPLES), xp]))
+    expected = expected[np.concatenate([[True], np.diff(expected) > 0])]
+    assert np.array_equal(xs, expected)
+    assert np.array_equal(below, np.searchsorted(xp, expected, side="right") - 1)

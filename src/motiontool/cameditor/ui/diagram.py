@@ -15,7 +15,7 @@ import pyqtgraph as pg
 from PySide6.QtCore import QPointF, QRectF, Qt, Signal
 from PySide6.QtWidgets import QGraphicsItem
 
-from motiontool.camcurve.model import LINE, Curve
+from motiontool.camcurve.model import Curve
 from motiontool.camcurve.spline import disengage_path, engage_path, profile
 from motiontool.cameditor.ui.drawing import ScreenCurve, show_one, thin
 
@@ -293,18 +293,18 @@ class CurveDiagram(pg.PlotWidget):
                       and curve.master_length == self.curve.master_length)
         self.curve, self.overlay = curve, overlay
         prof = profile(curve)
-        xs = np.sort(np.concatenate([np.linspace(0.0, curve.master_length, SAMPLES), prof.x]))
-        xs = xs[np.concatenate([[True], np.diff(xs) > 0])]  # sorted, without repeats
-        ys = prof.slave(xs, periodic=False)
+        xs, below = samples(prof.x, curve.master_length)
+        pieces = prof.pieces(xs, below)
+        ys = prof.at_pieces(xs, pieces, 0)
         self.samples_x, self.samples_y = xs, ys
-        green, red = self._straight_masks(prof, xs)
+        green, red = self._straight_masks(prof, xs, below, prof.at_pieces(xs, pieces, 2))
         self.layers = {self.red: np.where(red, ys, np.nan), self.green: np.where(green, ys, np.nan)}
         self._set_title(f"<b>{curve.name}</b>")
         self._set_points(curve, prof, same_types=dragging)
         shown = [n for n in ("velocity", "acceleration", "jerk") if getattr(overlay, n)]
         for nu, name in enumerate(("velocity", "acceleration", "jerk"), start=1):
             if name in shown:
-                self.layers[self.side_items[name]] = prof._eval(xs, nu, False)
+                self.layers[self.side_items[name]] = prof.at_pieces(xs, pieces, nu)
             else:
                 self.side_items[name].setData([], [])
         self._drawn_for = None
@@ -342,22 +342,20 @@ class CurveDiagram(pg.PlotWidget):
                 continue
             item.setData(*thin(self.samples_x, ys, view))
 
-    def _straight_masks(self, prof, xs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def _straight_masks(self, prof, xs: np.ndarray, below: np.ndarray,
+                        acceleration: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Samples drawn green (straight segments: built as tangent sections, or happening to be straight
-        [DG L3600]) and red; a sample on a joint belongs to both neighbours so the colours meet."""
+        [DG L3600]) and red; a sample on a joint belongs to both neighbours so the colours meet.  ``below``: the
+        last fix point at or before each sample (see ``samples``); ``acceleration`` at each sample."""
         xp, yp = prof.x, prof.y
-        below = np.searchsorted(xp, xs, side="right") - 1  # the last fix point at or before each sample
         seg = np.clip(below, 0, len(xp) - 2)
-        acc = np.abs(prof.acceleration(xs, periodic=False))
+        acc = np.abs(acceleration)
         peak = np.zeros(len(xp) - 1)
         np.maximum.at(peak, seg, acc)
         at_point = xs == xp[below]  # the sample is a fix point (xs starts at xp[0])
         np.maximum.at(peak, np.clip(seg - 1, 0, None)[at_point], acc[at_point])
         flat = peak * np.diff(xp) ** 2 <= 1e-7 * np.maximum(1.0, np.abs(np.diff(yp)))
-        line = np.zeros(len(prof.kinds), dtype=bool)
-        if LINE in prof.kinds:
-            line[[k for k, kind in enumerate(prof.kinds) if kind == LINE]] = True
-        straight = flat | line
+        straight = flat | prof.line_segments
         joint = at_point & (xs > xp[0]) & (xs < xp[-1])
         before = np.clip(seg - 1, 0, None)
         green = straight[seg] | (joint & straight[before])
@@ -546,6 +544,18 @@ class CurveDiagram(pg.PlotWidget):
     def zoom(self, factor: float) -> None:
         """Zoom In (0.5) keeps the central part; Zoom Out (2) [DG L3570-3571]."""
         self.box.scaleBy((factor, factor))
+
+
+def samples(xp: np.ndarray, master_length: float) -> tuple[np.ndarray, np.ndarray]:
+    """The diagram's master positions: SAMPLES evenly over the cycle and every fix point (``xp``, strictly
+    increasing), sorted and without repeats; and for each the index of the last fix point at or before it (-1:
+    none).  Merged by position rather than sorted and searched: a 10 000-point curve does this on every mouse
+    move of a drag."""
+    even = np.linspace(0.0, master_length, SAMPLES)
+    after = np.searchsorted(xp, even, side="left")  # fix points before each even sample
+    repeat = (after < len(xp)) & (xp[np.minimum(after, len(xp) - 1)] == even)  # on a fix point: drawn once
+    even, after = even[~repeat], after[~repeat]
+    return np.insert(xp, after, even), np.insert(np.arange(len(xp)), after, after - 1)
 
 
 def correction_regions(curve: Curve) -> list[tuple[float, float]]:
