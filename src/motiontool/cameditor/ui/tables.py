@@ -49,7 +49,8 @@ class FixPointModel(QAbstractTableModel):
         """A drag moved one point: refresh that row only (keeps the selection).  Not the Point column, which does
         not change: it is sized to its contents, and a change there would measure a thousand rows each time."""
         self.curve = curve
-        self.dataChanged.emit(self.index(row, 1), self.index(row, 3))
+        for column in (1, 2, 3):  # cell by cell: a view repaints one changed cell, but all rows for a range
+            self.dataChanged.emit(self.index(row, column), self.index(row, column))
 
     def rowCount(self, parent=_ROOT) -> int:  # noqa: N802 - Qt override
         return 0 if self.curve is None or parent.isValid() else len(self.curve.fix_points)
