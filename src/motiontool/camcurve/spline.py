@@ -140,6 +140,7 @@ class CurveProfile:
                                                                  self.y[k], self.y[k + 1]) for k in laws])
         self.ppoly = PPoly(coeffs, breaks, extrapolate=True)
         self._derivatives: list[PPoly | None] = [self.ppoly, None, None, None]  # made when first asked
+        self._ascending: tuple[np.ndarray, np.ndarray] | None = None  # see max_abs
 
     # -- construction helpers ---------------------------------------------------------------------------------
     @staticmethod
@@ -284,10 +285,12 @@ class CurveProfile:
         Vectorised over all pieces (a 10 000-point curve is recomputed while a point is dragged): the stationary
         points are the real roots of derivative nu+1, found per piece from batched companion matrices grouped by
         the polynomial's actual degree."""
-        asc = self.ppoly.c[::-1]  # ascending powers, shape (degree+1, pieces)
-        used = np.flatnonzero(asc.any(axis=1))
-        asc = asc[:used[-1] + 1] if len(used) else asc[:1]  # powers no piece uses (a cubic spline's 4, 5) add 0
-        h = np.diff(self.ppoly.x)
+        if self._ascending is None:  # shared by the maxima of all derivatives (Curve Info asks for three)
+            asc = self.ppoly.c[::-1]  # ascending powers, shape (degree+1, pieces)
+            used = np.flatnonzero(asc.any(axis=1))
+            asc = asc[:used[-1] + 1] if len(used) else asc[:1]  # powers no piece uses (a cubic's 4, 5) add 0
+            self._ascending = (np.ascontiguousarray(asc), np.diff(self.ppoly.x))
+        asc, h = self._ascending
         deriv = _derive(asc, nu)
         slope = _derive(deriv, 1)
         t = np.concatenate([np.zeros((len(h), 1)), h[:, None], _roots_in(slope, h)], axis=1)
@@ -322,17 +325,20 @@ def _roots_in(asc: np.ndarray, h: np.ndarray) -> np.ndarray:
         idx = np.nonzero(degree == g)[0]
         if not len(idx):
             continue
+        if len(idx) == pieces:  # every piece of this degree (a long spline): slices instead of gathers
+            idx = slice(None)
         coeffs = asc[:g + 1, idx]
         monic = coeffs[:g] / coeffs[g]
         if g == 1:  # the 1×1 companion matrix [-monic] is its own eigenvalue (LAPACK returns it exactly)
-            roots = -monic.T
+            real = -monic.T
+            ok = (real > 0) & (real < h[idx, None])  # real: no imaginary part to test
         else:
-            companion = np.zeros((len(idx), g, g))
+            companion = np.zeros((coeffs.shape[1], g, g))
             companion[:, np.arange(1, g), np.arange(g - 1)] = 1.0
             companion[:, :, -1] = -monic.T
             roots = np.linalg.eigvals(companion)
-        real = roots.real
-        ok = (np.abs(roots.imag) <= 1e-9 * (1.0 + np.abs(real))) & (real > 0) & (real < h[idx, None])
+            real = roots.real
+            ok = (np.abs(roots.imag) <= 1e-9 * (1.0 + np.abs(real))) & (real > 0) & (real < h[idx, None])
         out[idx, :g] = np.where(ok, real, 0.0)
     return out
 
