@@ -37,7 +37,7 @@ from PySide6.QtCore import QEvent, QPoint, QPointF, Qt  # noqa: E402
 from PySide6.QtGui import QMouseEvent  # noqa: E402
 from PySide6.QtWidgets import QApplication  # noqa: E402
 
-from motiontool.camcurve import Curve, FixPoint  # noqa: E402
+from motiontool.camcurve import Curve, FixPoint, profile  # noqa: E402
 from motiontool.cameditor.ui.window import CamEditor, Slot  # noqa: E402
 
 POINTS = 10_000
@@ -101,6 +101,9 @@ def measure(app: QApplication, name: str, c: Curve, index: int, info: bool = Fal
             times.append((time.perf_counter() - t0) * 1000)
     dragged = editor.diagram.box._dragging
     assert dragged is not None, "the press did not hit a fix point"
+    # the last move was drawn in full (an exception in a slot would otherwise only be printed)
+    shown = editor.diagram
+    assert np.array_equal(shown.samples_y, profile(editor.curve()).slave(shown.samples_x, periodic=False))
     t0 = time.perf_counter()
     _send(editor, QEvent.Type.MouseButtonRelease, pos, LEFT, NONE)
     app.processEvents()
@@ -115,7 +118,15 @@ def measure(app: QApplication, name: str, c: Curve, index: int, info: bool = Fal
     editor.close()
 
 
+def _fail_on_slot_errors(kind, value, tb) -> None:
+    """An exception raised in a Qt slot or event handler is only printed by PySide; a benchmark that went on
+    would time a broken drag."""
+    sys.__excepthook__(kind, value, tb)
+    os._exit(1)
+
+
 def main() -> None:
+    sys.excepthook = _fail_on_slot_errors
     app = QApplication.instance() or QApplication(sys.argv)
     pg.setConfigOption("mouseRateLimit", 0)  # time every move (the editor itself keeps pyqtgraph's default)
     for info in (False, True):

@@ -10,6 +10,8 @@ import dataclasses
 import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from PySide6.QtCore import QEvent, QObject, QRect
+from PySide6.QtWidgets import QApplication
 
 from motiontool.camcurve.model import Curve, FixPoint
 from motiontool.camcurve.spline import CurveProfile, curve_info
@@ -17,6 +19,7 @@ from motiontool.cameditor import editing
 from motiontool.cameditor.limits import slave_limits
 from motiontool.cameditor.ui.cards import CurveInfoCard
 from motiontool.cameditor.ui.diagram import SAMPLES, CurveDiagram, samples
+from motiontool.cameditor.ui.drawing import changed_span
 from motiontool.cameditor.ui.edits import FOLLOW_INTERVAL
 from motiontool.cameditor.ui.window import Slot
 
@@ -160,3 +163,72 @@ def test_diagram_samples_merge_as_sort_and_search_would(points, length):
     expected = expected[np.concatenate([[True], np.diff(expected) > 0])]
     assert np.array_equal(xs, expected)
     assert np.array_equal(below, np.searchsorted(xp, expected, side="right") - 1)
+
+
+class _PaintSpy(QObject):
+    """Records the region of each paint event of one widget."""
+
+    def __init__(self, widget) -> None:
+        super().__init__()
+        self.regions: list[QRect] = []
+        widget.installEventFilter(self)
+
+    def eventFilter(self, obj, event) -> bool:  # noqa: N802 - Qt override
+        if event.type() == QEvent.Type.Paint:
+            self.regions.append(event.region().boundingRect())
+        return False
+
+
+def _on_screen(editor):
+    """What the window shows of the diagram (the backing store, not a fresh rendering)."""
+    vp = editor.diagram.viewport()
+    top = vp.mapTo(editor, vp.rect().topLeft())
+    return editor.screen().grabWindow(editor.winId(), top.x(), top.y(), vp.width(), vp.height()).toImage()
+
+
+def test_a_drag_repaints_only_the_strip_that_changed_and_the_screen_is_a_full_repaint(qtbot, editor):
+    """Each move repaints only where the drawn lines changed: seen whole, a long curve changes in a narrow strip
+    around the dragged point, not over the whole diagram.  After the moves the screen shows pixel for pixel what
+    a full rendering of the diagram shows, also zoomed in so far that the change spreads over the whole view, and
+    with the velocity on the right axis too.  (The comparison renders the diagram once more, which makes Qt
+    re-render its cached items: so it comes after the moves, which keeps what they left on screen.)"""
+    curve = _long_curve()
+    _open(editor, curve)
+    editor.options.boxes["velocity"].setChecked(True)
+    qtbot.wait(50)
+    spy = _PaintSpy(editor.diagram.viewport())
+    index = N // 2 + 7
+    p = curve.fix_points[index]
+    moves = iter(enumerate((12, 30, -45, 80, 81, 20, -60, 5, 100, -100)))
+    for zoomed in (False, True):
+        if zoomed:  # about 40 fix points in view: the spline's change reaches far beyond the point's marker
+            editor.diagram.box.setRange(xRange=(p.master - 200, p.master + 200),
+                                        yRange=(p.slave - 150, p.slave + 150), padding=0)
+            qtbot.wait(20)
+        for _ in range(5):
+            step, ds = next(moves)
+            spy.regions.clear()
+            editor.diagram.box.point_dragged.emit(index, p.master + 0.5 * step, p.slave + ds, False)
+            QApplication.processEvents()
+            if step and not zoomed:  # (the first move takes the point out of the cached markers: all repainted)
+                assert spy.regions and max(r.width() for r in spy.regions) < editor.diagram.viewport().width() / 8
+        # the screen after the partial repaints is what a full rendering of the diagram gives
+        assert _on_screen(editor) == editor.diagram.viewport().grab().toImage(), zoomed
+    editor.diagram.box.point_dragged.emit(index, p.master, p.slave + 81, True)
+
+
+def test_changed_span_of_two_polylines():
+    x = np.arange(10.0)
+    y = np.sin(x)
+    assert changed_span(x, y, x, y.copy(), 1e-6, 1e-6) is None
+    y2 = y.copy()
+    y2[4] += 1e-3
+    assert changed_span(x, y, x, y2, 1e-6, 1e-6) == (3.0, 5.0)  # the point and the segments to its neighbours
+    assert changed_span(x, y, x, y2, 1e-6, 1e-2) is None  # within the tolerance
+    gap = y.copy()
+    gap[7] = np.nan
+    assert changed_span(x, y, x, gap, 1e-6, 1e-6) == (6.0, 8.0)
+    # one point more in the middle: what is shared at both ends is unchanged
+    x3, y3 = np.insert(x, 5, 4.5), np.insert(y, 5, 0.25)
+    assert changed_span(x, y, x3, y3, 1e-6, 1e-6) == (4.0, 5.0)
+    assert changed_span(x3, y3, x, y, 1e-6, 1e-6) == (4.0, 5.0)

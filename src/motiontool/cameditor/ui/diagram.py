@@ -184,6 +184,7 @@ class CurveDiagram(pg.PlotWidget):
         for name in ("velocity", "acceleration", "jerk"):
             vb = pg.ViewBox(enableMenu=False)
             vb.setMouseEnabled(False, False)
+            vb.disableAutoRange()  # x follows the main view, y is fit_side's: no repaint of it all on new data
             vb.setXLink(self.box)
             plot.scene().addItem(vb)
             vb.setZValue(-5)
@@ -305,7 +306,7 @@ class CurveDiagram(pg.PlotWidget):
         for nu, name in enumerate(("velocity", "acceleration", "jerk"), start=1):
             if name in shown:
                 self.layers[self.side_items[name]] = prof.at_pieces(xs, pieces, nu)
-            else:
+            elif self.side_items[name].xData is not None and len(self.side_items[name].xData):
                 self.side_items[name].setData([], [])
         self._drawn_for = None
         self._draw()
@@ -340,7 +341,7 @@ class CurveDiagram(pg.PlotWidget):
                 if item.xData is not None and len(item.xData):
                     item.setData([], [])
                 continue
-            item.setData(*thin(self.samples_x, ys, view))
+            item.set_samples(*thin(self.samples_x, ys, view))
 
     def _straight_masks(self, prof, xs: np.ndarray, below: np.ndarray,
                         acceleration: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

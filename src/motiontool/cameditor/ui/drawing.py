@@ -1,6 +1,6 @@
 """Drawing helpers of the curve diagram that keep a 10 000-point curve as fast on screen as a short one: the
-samples a view needs (``thin``), a curve item that draws in pixels (``ScreenCurve``) and one-point markers that
-move instead of taking new data (``show_one``)."""
+samples a view needs (``thin``), a curve item that draws in pixels and repaints only where its line changed
+(``ScreenCurve``) and one-point markers that move instead of taking new data (``show_one``)."""
 
 from __future__ import annotations
 
@@ -8,8 +8,9 @@ import numpy as np
 import pyqtgraph as pg
 from pyqtgraph import debug
 from pyqtgraph.Qt.internals import PrimitiveArray
-from PySide6.QtCore import QLineF
+from PySide6.QtCore import QLineF, QRectF
 from PySide6.QtGui import QPainter, QTransform
+from PySide6.QtWidgets import QGraphicsItem
 
 DRAW_ALL_UP_TO = 4  # samples per pixel column drawn as they are; more are thinned to each column's extremes
 _FAR = 2.0 ** 30  # pixel coordinates are clipped to this (Qt misdraws beyond)
@@ -47,13 +48,91 @@ def thin(xs: np.ndarray, ys: np.ndarray, view: tuple[float, float, int] | None) 
     return xs[keep], ys[keep]
 
 
+def changed_span(old_x: np.ndarray, old_y: np.ndarray, x: np.ndarray, y: np.ndarray, tol_x: float = 0.0,
+                 tol_y: float = 0.0) -> tuple[float, float] | None:
+    """The x range of the segments where polyline (x, y) differs from (old_x, old_y) by more than the tolerances
+    (NaN = gap; a gap opening or closing is a change), or None if it does not.  The lines may differ in length:
+    what they share at the start and at the end is unchanged, the rest between is the change."""
+    m = min(len(old_x), len(x))
+
+    def differs(ax, ay, bx, by):
+        return (np.abs(ax - bx) > tol_x) | (np.abs(ay - by) > tol_y) | (np.isnan(ay) != np.isnan(by))
+
+    front = differs(old_x[:m], old_y[:m], x[:m], y[:m])
+    if len(old_x) == len(x):
+        if not front.any():
+            return None
+        back = front
+    else:
+        back = differs(old_x[len(old_x) - m:], old_y[len(old_y) - m:], x[len(x) - m:], y[len(y) - m:])
+    first = int(np.argmax(front)) if front.any() else m  # points equal at the start
+    last = m - 1 - int(np.flatnonzero(back)[-1]) if back.any() else m  # points equal at the end
+    ends = []
+    for xs in (old_x, x):  # the changed points and the segments to their neighbours
+        n = len(xs)
+        lo, hi = max(min(first, n - last) - 1, 0), min(max(first, n - last), n - 1)
+        ends += [xs[lo], xs[hi]]
+    return min(ends), max(ends)
+
+
 class ScreenCurve(pg.PlotCurveItem):
     """A PlotCurveItem (solid line, NaN = gap) that maps its points to pixels itself and draws with the identity
-    transform: Qt draws thick lines about three times as fast in pixels as through the view's scaling."""
+    transform: Qt draws thick lines about three times as fast in pixels as through the view's scaling.
+
+    ``set_samples`` (x increasing) repaints only the strip where the line changed: a dragged fix point moves a long
+    spline visibly only near the point, so Qt repaints that strip instead of the whole diagram; ``paint`` draws
+    only the segments in the part being repainted.  For that the item's geometry is what its view shows, not the
+    data's extent (new data never changes it; the view box clips its items to the view anyway)."""
 
     def __init__(self, pen) -> None:
         super().__init__(pen=pen, connect="finite")
         self._segments = PrimitiveArray(QLineF, 4)
+        self._view_rect: QRectF | None = None
+        self.setFlag(QGraphicsItem.GraphicsItemFlag.ItemUsesExtendedStyleOption)  # paint() gets the exposed part
+
+    def boundingRect(self) -> QRectF:  # noqa: N802 - Qt override
+        if self._view_rect is None:
+            view = self.getViewBox()
+            rect = None if view is None else self.mapRectFromView(view.viewRect())
+            self._view_rect = QRectF() if rect is None else rect.normalized()
+        return self._view_rect
+
+    def viewRangeChanged(self) -> None:  # noqa: N802 - pyqtgraph override
+        self._view_rect = None
+        self.prepareGeometryChange()
+        super().viewRangeChanged()
+
+    def viewTransformChanged(self) -> None:  # noqa: N802 - pyqtgraph override
+        self._view_rect = None
+        super().viewTransformChanged()
+
+    def set_samples(self, x: np.ndarray, y: np.ndarray) -> None:
+        """setData for x increasing, repainting only where the drawn line changes (see the class)."""
+        old_x, old_y = self.xData, self.yData
+        view = self.getViewWidget() if old_x is not None and len(old_x) > 1 and len(x) > 1 else None
+        tr = self.deviceTransform(view.viewportTransform()) if view is not None else None
+        if tr is None or tr.type().value > QTransform.TransformationType.TxScale.value or tr.m11() == 0 \
+                or tr.m22() == 0:
+            self.setData(x, y)
+            return
+        bounds = (self.dataBounds(0), self.dataBounds(1))
+        self.xData, self.yData = x, y
+        self.invalidateBounds()
+        if (self.dataBounds(0), self.dataBounds(1)) != bounds:
+            self.informViewBoundsChanged()  # for the view's auto range
+        # what PlotCurveItem.updateData resets besides the geometry and the full repaint
+        self.path = self.fillPath = self._fillPathList = self._mouseShape = None
+        self._lineSegmentsRendered = False
+        sx = abs(tr.m11())
+        # only points with exactly the same coordinates count as unchanged: Qt then draws exactly the same pixels
+        # (a change of a millionth of a pixel can move a pixel edge; far from a dragged fix point the spline's
+        # change is below the numbers' resolution, some 30 fix points away)
+        span = changed_span(old_x, old_y, x, y)
+        if span is not None:
+            pad = (self.opts["pen"].widthF() + 2) / sx  # the pen's width and a pixel of rounding either side
+            box = self.boundingRect()
+            self.update(QRectF(span[0] - pad, box.top(), span[1] - span[0] + 2 * pad, box.height()))
+        self.sigPlotChanged.emit(self)
 
     @debug.warnOnException  # an exception raised in paint() would crash Qt
     def paint(self, p: QPainter, opt, widget) -> None:
@@ -64,6 +143,13 @@ class ScreenCurve(pg.PlotCurveItem):
                 or tr.type().value > QTransform.TransformationType.TxScale.value):
             super().paint(p, opt, widget)
             return
+        exposed = opt.exposedRect
+        if exposed.width() > 0 and (exposed.left() > x[0] or exposed.right() < x[-1]):  # x increasing: a slice
+            lo = max(int(np.searchsorted(x, exposed.left(), side="right")) - 1, 0)
+            hi = min(int(np.searchsorted(x, exposed.right(), side="left")) + 1, len(x))
+            x, y = x[lo:hi], y[lo:hi]
+            if len(x) < 2:
+                return
         px = np.clip(x * tr.m11() + tr.dx(), -_FAR, _FAR)
         py = np.clip(y * tr.m22() + tr.dy(), -_FAR, _FAR)  # NaN stays NaN
         ok = np.isfinite(px) & np.isfinite(py)
