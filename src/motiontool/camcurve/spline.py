@@ -114,9 +114,11 @@ class CurveProfile:
         breaks = np.empty(coeffs.shape[1] + 1)
         breaks[piece] = self.x[:-1]
         breaks[-1] = self.x[-1]
+        contiguous = not trapezoid.any()  # then piece k is segment k: slices instead of gathers
         for first, cs in splines.items():  # whole spline runs at once (a curve may have 10 000 points)
             if first not in quintic_runs:
-                coeffs[_DEGREE - 3:, piece[first:first + cs.shape[1]]] = cs
+                cols = slice(first, first + cs.shape[1]) if contiguous else piece[first:first + cs.shape[1]]
+                coeffs[_DEGREE - 3:, cols] = cs
         quintic = np.zeros(n - 1, dtype=bool)
         quintic[list(quintic_runs)] = True
         for k in np.nonzero((kind_codes != _KIND_CODES[SPLINE]) | quintic)[0]:

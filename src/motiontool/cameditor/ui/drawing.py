@@ -44,8 +44,10 @@ def thin(xs: np.ndarray, ys: np.ndarray, view: tuple[float, float, int] | None) 
         keep.append(np.minimum.reduceat(np.where(values == best, index, len(xs)), starts))
     edge = np.flatnonzero(finite[1:] != finite[:-1])
     keep += [edge, edge + 1]
-    keep = np.unique(np.concatenate(keep))
-    return xs[keep], ys[keep]
+    kept = np.zeros(len(xs), dtype=bool)  # the kept indices, sorted and once each
+    for k in keep:
+        kept[k] = True
+    return xs[kept], ys[kept]
 
 
 def changed_span(old_x: np.ndarray, old_y: np.ndarray, x: np.ndarray, y: np.ndarray, tol_x: float = 0.0,
@@ -115,11 +117,9 @@ class ScreenCurve(pg.PlotCurveItem):
                 or tr.m22() == 0:
             self.setData(x, y)
             return
-        bounds = (self.dataBounds(0), self.dataBounds(1))
         self.xData, self.yData = x, y
         self.invalidateBounds()
-        if (self.dataBounds(0), self.dataBounds(1)) != bounds:
-            self.informViewBoundsChanged()  # for the view's auto range
+        self.informViewBoundsChanged()  # the data's extent, for the view's auto range
         # what PlotCurveItem.updateData resets besides the geometry and the full repaint
         self.path = self.fillPath = self._fillPathList = self._mouseShape = None
         self._lineSegmentsRendered = False
