@@ -295,8 +295,10 @@ class CurveProfile:
         asc, h = self._ascending
         deriv = _derive(asc, nu)
         slope = _derive(deriv, 1)
-        t = np.concatenate([np.zeros((len(h), 1)), h[:, None], _roots_in(slope, h)], axis=1)
-        return float(np.max(np.abs(_horner(deriv, t)), initial=0.0))
+        best = float(np.max(np.abs(deriv[0]), initial=0.0))  # at each piece's start: its constant term
+        for t in (h, *np.ascontiguousarray(_roots_in(slope, h).T)):  # its end, its stationary points (0: none)
+            best = max(best, float(np.max(np.abs(_horner(deriv, t)), initial=0.0)))
+        return best
 
 
 def _derive(asc: np.ndarray, nu: int) -> np.ndarray:
@@ -310,10 +312,10 @@ def _derive(asc: np.ndarray, nu: int) -> np.ndarray:
 
 
 def _horner(asc: np.ndarray, t: np.ndarray) -> np.ndarray:
-    """Evaluate each piece's polynomial (column of asc) at the points of its row of t."""
+    """Evaluate each piece's polynomial (column of asc) at its point t (one per piece)."""
     out = np.zeros_like(t)
     for a in asc[::-1]:
-        out = out * t + a[:, None]
+        out = out * t + a
     return out
 
 
