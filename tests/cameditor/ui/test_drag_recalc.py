@@ -19,7 +19,6 @@ from motiontool.cameditor import editing
 from motiontool.cameditor.limits import slave_limits
 from motiontool.cameditor.ui.cards import CurveInfoCard
 from motiontool.cameditor.ui.diagram import SAMPLES, CurveDiagram, samples
-from motiontool.cameditor.ui.drawing import changed_span
 from motiontool.cameditor.ui.edits import FOLLOW_INTERVAL
 from motiontool.cameditor.ui.window import Slot
 
@@ -215,20 +214,3 @@ def test_a_drag_repaints_only_the_strip_that_changed_and_the_screen_is_a_full_re
         # the screen after the partial repaints is what a full rendering of the diagram gives
         assert _on_screen(editor) == editor.diagram.viewport().grab().toImage(), zoomed
     editor.diagram.box.point_dragged.emit(index, p.master, p.slave + 81, True)
-
-
-def test_changed_span_of_two_polylines():
-    x = np.arange(10.0)
-    y = np.sin(x)
-    assert changed_span(x, y, x, y.copy(), 1e-6, 1e-6) is None
-    y2 = y.copy()
-    y2[4] += 1e-3
-    assert changed_span(x, y, x, y2, 1e-6, 1e-6) == (3.0, 5.0)  # the point and the segments to its neighbours
-    assert changed_span(x, y, x, y2, 1e-6, 1e-2) is None  # within the tolerance
-    gap = y.copy()
-    gap[7] = np.nan
-    assert changed_span(x, y, x, gap, 1e-6, 1e-6) == (6.0, 8.0)
-    # one point more in the middle: what is shared at both ends is unchanged
-    x3, y3 = np.insert(x, 5, 4.5), np.insert(y, 5, 0.25)
-    assert changed_span(x, y, x3, y3, 1e-6, 1e-6) == (4.0, 5.0)
-    assert changed_span(x3, y3, x, y, 1e-6, 1e-6) == (4.0, 5.0)

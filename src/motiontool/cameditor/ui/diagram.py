@@ -17,7 +17,7 @@ from PySide6.QtWidgets import QGraphicsItem
 
 from motiontool.camcurve.model import Curve
 from motiontool.camcurve.spline import disengage_path, engage_path, profile
-from motiontool.cameditor.ui.drawing import ScreenCurve, show_one, thin
+from motiontool.cameditor.ui.drawing import Markers, ScreenCurve, show_one, thin
 
 # colours of the manual [DG L3599-3600, L3890-3938]
 RED, GREEN = (210, 30, 30), (0, 150, 0)
@@ -197,14 +197,14 @@ class CurveDiagram(pg.PlotWidget):
         self.red = ScreenCurve(pen=pg.mkPen(RED, width=2))
         self.green = ScreenCurve(pen=pg.mkPen(GREEN, width=2.5))
         # tangent points green, all others red [DG L3599]; one brush per item keeps 10 000 points fast
-        self.points = pg.ScatterPlotItem(size=MARKER_SIZE, symbol="s", pen=pg.mkPen(20, 20, 20, 200),
+        self.points = Markers(size=MARKER_SIZE, symbol="s", pen=pg.mkPen(20, 20, 20, 200),
                                          brush=pg.mkBrush(RED))
-        self.t_points = pg.ScatterPlotItem(size=MARKER_SIZE, symbol="s", pen=pg.mkPen(20, 20, 20, 200),
+        self.t_points = Markers(size=MARKER_SIZE, symbol="s", pen=pg.mkPen(20, 20, 20, 200),
                                            brush=pg.mkBrush(GREEN))
-        self.hover = pg.ScatterPlotItem(size=MARKER_SIZE + 8, symbol="s", pen=pg.mkPen(0, 0, 0, width=2),
+        self.hover = Markers(size=MARKER_SIZE + 8, symbol="s", pen=pg.mkPen(0, 0, 0, width=2),
                                         brush=None)
         # the point being dragged, drawn on its own while the others stay put (and cached as a picture)
-        self.drag_marker = pg.ScatterPlotItem(size=MARKER_SIZE, symbol="s", pen=pg.mkPen(20, 20, 20, 200))
+        self.drag_marker = Markers(size=MARKER_SIZE, symbol="s", pen=pg.mkPen(20, 20, 20, 200))
         self._drag_point: int | None = None
         self.slave_stop_line = pg.InfiniteLine(angle=0, movable=False, pen=pg.mkPen(GREY, width=5))
         self.engage_item = pg.PlotDataItem(pen=pg.mkPen(DARK_BLUE, width=2))

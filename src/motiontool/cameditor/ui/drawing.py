@@ -165,6 +165,28 @@ class ScreenCurve(pg.PlotCurveItem):
         p.restore()
 
 
+class Markers(pg.ScatterPlotItem):
+    """A ScatterPlotItem that keeps its bounding rect until its points, their sizes or the view change: Qt asks for
+    it several times per repaint (each mouse move of a drag), and pyqtgraph works it out from the view's pixel
+    size every time."""
+
+    _rect: QRectF | None = None
+
+    def boundingRect(self) -> QRectF:  # noqa: N802 - Qt override
+        if self._rect is None:
+            self._rect = super().boundingRect()
+        return self._rect
+
+    def prepareGeometryChange(self) -> None:  # noqa: N802 - pyqtgraph calls it before any change of the bounds
+        # (new points, a new view range or size: ScatterPlotItem.viewTransformChanged calls it too)
+        self._rect = None
+        super().prepareGeometryChange()
+
+    def updateSpots(self, *args, **kwargs) -> None:  # noqa: N802 - new spot sizes change the padding
+        super().updateSpots(*args, **kwargs)
+        self._rect = None
+
+
 def show_one(item: pg.ScatterPlotItem, at) -> None:
     """A one-point marker at ``at`` (x, y), or none for None.  Its point sits at (0, 0) and the item moves:
     cheaper than new data on every mouse move."""
