@@ -144,9 +144,12 @@ class ScreenCurve(pg.PlotCurveItem):
             super().paint(p, opt, widget)
             return
         exposed = opt.exposedRect
-        if exposed.width() > 0 and (exposed.left() > x[0] or exposed.right() < x[-1]):  # x increasing: a slice
-            lo = max(int(np.searchsorted(x, exposed.left(), side="right")) - 1, 0)
-            hi = min(int(np.searchsorted(x, exposed.right(), side="left")) + 1, len(x))
+        # a line's width reaches beyond its segment's ends: also the segments within that distance of the part
+        margin = (self.opts["pen"].widthF() + 2) / abs(tr.m11()) if tr.m11() else 0.0
+        left, right = exposed.left() - margin, exposed.right() + margin
+        if exposed.width() > 0 and (left > x[0] or right < x[-1]):  # x increasing: a slice
+            lo = max(int(np.searchsorted(x, left, side="right")) - 1, 0)
+            hi = min(int(np.searchsorted(x, right, side="left")) + 1, len(x))
             x, y = x[lo:hi], y[lo:hi]
             if len(x) < 2:
                 return
