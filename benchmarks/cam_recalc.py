@@ -13,12 +13,13 @@ What one measured move covers, end to end, as a user sees it:
   Curve Info card) into the window's backing store, i.e. until the screen shows the new state.
 
 The timer covers sendEvent + processEvents of each move.  The window is 1400 × 900 (QT_QPA_PLATFORM=offscreen:
-Qt's raster painting as on screen, without the final blit to a display) and the whole curve is in view, the
-slowest case (all 10 000 points and markers on screen); the cards show Curve Data (the default) or, for the
-``_info`` lines, Curve Info.  pyqtgraph's mouse rate limit (100 moves/s) is switched
-off so that every move is handled and timed.  The drag starts on fix point 5000 (the nearest marker under it),
-warms up for 3 moves, is timed for STEPS moves (2 px up and -1..1 px sideways each), and is released (the
-release, one undo step with the full refresh of tables and cards, is printed separately).
+Qt's raster painting as on screen, without the final blit to a display) and the whole curve is in view (all
+10 000 points and markers on screen) or, for the ``_zoomed`` lines, only the 100 fix points around the dragged
+one (there the spline's change spreads over the whole view, so all of it is repainted on every move); the
+cards show Curve Data (the default) or, for the ``_info`` lines, Curve Info.  pyqtgraph's mouse rate limit
+(100 moves/s) is switched off so that every move is handled and timed.  The drag starts on fix point 5000 (the
+nearest marker under it), warms up for 3 moves, is timed for STEPS moves (2 px up and -1..1 px sideways each),
+and is released (the release, one undo step with the full refresh of tables and cards, is printed separately).
 
 Prints ``name: value unit`` lines: mean and p95 per move, and the release.  Wall-clock times: on a machine
 busy with other work they grow with the load.
@@ -72,7 +73,7 @@ def _pixel(editor: CamEditor, master: float, slave: float) -> QPoint:
     return editor.diagram.mapFromScene(editor.diagram.box.mapViewToScene(QPointF(master, slave)))
 
 
-def measure(app: QApplication, name: str, c: Curve, index: int, info: bool = False) -> None:
+def measure(app: QApplication, name: str, c: Curve, index: int, info: bool = False, zoomed: bool = False) -> None:
     editor = CamEditor()
     editor.confirm = False
     editor.resize(1400, 900)
@@ -80,12 +81,17 @@ def measure(app: QApplication, name: str, c: Curve, index: int, info: bool = Fal
     editor.slots = [Slot(c.name, [], c)]
     editor.current = 0
     editor.refresh(zoom=True)
+    p = c.fix_points[index]
+    if zoomed:  # 50 fix points either side of the dragged one
+        editor.options.boxes["auto_scale"].setChecked(False)
+        near = c.fix_points[index - 50:index + 51]
+        low, high = min(q.slave for q in near), max(q.slave for q in near)
+        editor.diagram.box.setRange(xRange=(near[0].master, near[-1].master), yRange=(low - 50, high + 50))
     if info:
         editor.cards.setCurrentWidget(editor.curve_info)  # Curve Info follows the drag [DG L3646]
     for _ in range(3):
         app.processEvents()
     assert editor.options["continuous_recalc"]
-    p = c.fix_points[index]
     start = _pixel(editor, p.master, p.slave)
     _send(editor, QEvent.Type.MouseMove, start, NONE, NONE)  # hover: the hand cursor
     app.processEvents()
@@ -110,7 +116,7 @@ def measure(app: QApplication, name: str, c: Curve, index: int, info: bool = Fal
     release = (time.perf_counter() - t0) * 1000
     assert editor.slot().history.undo_label() == "Move point" and editor.curve() != c
     times.sort()
-    name += "_info" if info else ""
+    name += ("_zoomed" if zoomed else "") + ("_info" if info else "")
     print(f"cam_recalc_drag_{name}_mean: {statistics.fmean(times):.1f} ms")
     print(f"cam_recalc_drag_{name}_p95: {times[int(np.ceil(0.95 * len(times))) - 1]:.1f} ms")
     print(f"cam_recalc_release_{name}: {release:.1f} ms")
@@ -132,6 +138,7 @@ def main() -> None:
     for info in (False, True):
         measure(app, "stamping", stamping(), 1, info)
         measure(app, "10000", curve(), POINTS // 2, info)
+        measure(app, "10000", curve(), POINTS // 2, info, zoomed=True)
 
 
 if __name__ == "__main__":
