@@ -46,8 +46,8 @@ class FixPointModel(QAbstractTableModel):
         self.endResetModel()
 
     def update_row(self, row: int, curve: Curve) -> None:
-        """A drag moved one point: refresh that row only (keeps the selection).  Not the Point column, which does
-        not change: it is sized to its contents, and a change there would measure a thousand rows each time."""
+        """A drag moved one point: refresh that row only (keeps the selection); not the Point column, which does
+        not change."""
         self.curve = curve
         for column in (1, 2, 3):  # cell by cell: a view repaints one changed cell, but all rows for a range
             self.dataChanged.emit(self.index(row, column), self.index(row, column))
@@ -154,13 +154,22 @@ class FixPointTable(QWidget):
         self.view.verticalHeader().hide()
         self.view.verticalHeader().setDefaultSectionSize(20)
         self.view.horizontalHeader().setSectionResizeMode(QHeaderView.ResizeMode.Stretch)
-        self.view.horizontalHeader().setSectionResizeMode(0, QHeaderView.ResizeMode.ResizeToContents)
+        # the Point column fits its largest number, measured on the last row: Qt's ResizeToContents asks a
+        # thousand rows for their text after every reset (~80 ms for a 10 000-point curve)
+        self.view.horizontalHeader().setSectionResizeMode(0, QHeaderView.ResizeMode.Fixed)
+        self.model.modelReset.connect(self._fit_point_column)
         self.view.setAlternatingRowColors(False)
         self.add_button = QPushButton("Add...")
         self.add_button.clicked.connect(self.add_clicked)
         layout = QVBoxLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
         layout.addWidget(_table_box("Fix Points", self.view, self.add_button))
+
+    def _fit_point_column(self) -> None:
+        rows = self.model.rowCount()
+        number = self.view.sizeHintForIndex(self.model.index(rows - 1, 0)).width() + self.view.showGrid() if rows \
+            else 0  # (the grid line as QTableView.sizeHintForColumn counts it)
+        self.view.setColumnWidth(0, max(number, self.view.horizontalHeader().sectionSizeHint(0)))
 
     def highlight(self, row: int) -> None:
         """Hover in the diagram highlights the point's row [DG L3640]."""
