@@ -73,8 +73,20 @@ def _check_against_full_recompute(editor, reference: CurveDiagram) -> None:
             assert np.array_equal(d.samples_x[where], xs)
             assert np.array_equal(d.layers[item][where], ys, equal_nan=True)
     assert len(d.red.getData()[0]) < len(d.samples_x) / 2
-    # the markers: every fix point where the curve has it
-    assert np.array_equal(d.box.points, np.column_stack([prof.x, prof.y]))
+    # the markers: every fix point where the curve has it; while dragged, one is drawn by the drag marker
+    pts = np.column_stack([prof.x, prof.y])
+    assert np.array_equal(d.box.points, pts)
+    tangent = np.array([q.type == "T" for q in full.fix_points])
+    hidden = []
+    for item, mask in ((d.points, ~tangent), (d.t_points, tangent)):
+        drawn, visible = np.column_stack([item.data["x"], item.data["y"]]), item.data["visible"]
+        assert np.array_equal(drawn[visible], pts[mask][visible])
+        hidden += [tuple(pts[mask][k]) for k in np.flatnonzero(~visible)]
+    if hidden:
+        at = d.drag_marker.pos()
+        assert hidden == [(at.x(), at.y())] and len(d.drag_marker.data) == 1
+    else:
+        assert len(d.drag_marker.data) == 0
 
 
 def test_a_drag_recomputes_what_a_full_recompute_gives(qtbot, editor):

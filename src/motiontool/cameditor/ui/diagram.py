@@ -374,26 +374,36 @@ class CurveDiagram(pg.PlotWidget):
 
     def _place_points(self, pts: np.ndarray, tangent: np.ndarray, dragging: bool = False) -> None:
         """Draw the fix points.  While a point is dragged (``dragging``: only it moves), the others keep their
-        picture and the dragged one is drawn by ``drag_marker``, so 10 000 markers are not redrawn per move."""
+        picture and the dragged one is drawn by ``drag_marker``, so 10 000 markers are not redrawn per move; when
+        the drag ends (or is undone) with only that point changed, its marker is moved back among the others."""
         old, old_tangent = self.box.points, self.tangent
         self.box.points, self.tangent = pts, tangent
-        if dragging and old.shape == pts.shape and np.array_equal(old_tangent, tangent):
+        moved = None
+        if old.shape == pts.shape and np.array_equal(old_tangent, tangent):
             moved = np.nonzero((old != pts).any(axis=1))[0]
+        if dragging and moved is not None:
             j = int(moved[0]) if len(moved) == 1 else self._drag_point if len(moved) == 0 else None
             if j is not None and self._drag_point in (None, j):
                 if self._drag_point is None:
                     self._drag_point = j
-                    item = self.t_points if tangent[j] else self.points
-                    visible = np.ones(len(item.data), dtype=bool)
-                    visible[int(np.count_nonzero(tangent[:j] == tangent[j]))] = False
-                    item.setPointsVisible(visible)
+                    self._markers_of(j).hide_point(self._marker_index(j))
                     self.drag_marker.setData([0.0], [0.0], brush=pg.mkBrush(GREEN if tangent[j] else RED))
                 self.drag_marker.setPos(pts[j, 0], pts[j, 1])
                 return
-        self._drag_point = None
+        j, self._drag_point = self._drag_point, None
         show_one(self.drag_marker, None)
+        if j is not None and moved is not None and set(moved.tolist()) <= {j}:
+            self._markers_of(j).move_point(self._marker_index(j), pts[j, 0], pts[j, 1])
+            return
         self.points.setData(pts[~tangent, 0], pts[~tangent, 1])
         self.t_points.setData(pts[tangent, 0], pts[tangent, 1])
+
+    def _markers_of(self, j: int) -> Markers:
+        return self.t_points if self.tangent[j] else self.points
+
+    def _marker_index(self, j: int) -> int:
+        """Fix point j's index in its marker item (tangent points and the others are two items)."""
+        return int(np.count_nonzero(self.tangent[:j] == self.tangent[j]))
 
     def move_marker(self, index: int, master: float, slave: float) -> None:
         """Only the dragged point moves (Continuous Recalc off)."""
