@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pyqtgraph as pg
 
-from motiontool.cameditor.ui.drawing import Markers, changed_span
+from motiontool.cameditor.ui.drawing import Markers, ScreenCurve, changed_span
 
 
 def test_changed_span_of_two_polylines():
@@ -52,4 +52,39 @@ def test_markers_remember_exactly_pyqtgraphs_bounding_rect(qtbot):
     widget.resize(300, 200)  # another view size
     same()
     markers.setData([], [])
+    same()
+
+
+def test_a_screen_curve_covers_what_its_view_shows(qtbot):
+    """A ScreenCurve's geometry is its view, not its data (new data never changes it): it follows zoom, pan and
+    resize, also in a second view box linked to the first, as the CAM diagram's right axis has."""
+    widget = pg.PlotWidget()
+    qtbot.addWidget(widget)
+    widget.resize(600, 400)
+    widget.show()
+    qtbot.waitExposed(widget)
+    main = widget.getPlotItem().getViewBox()
+    side = pg.ViewBox()
+    widget.getPlotItem().scene().addItem(side)
+    side.setXLink(main)
+    curves = {main: ScreenCurve(pen=pg.mkPen("r")), side: ScreenCurve(pen=pg.mkPen("b"))}
+    for box, curve in curves.items():
+        box.addItem(curve)
+        curve.setData(np.arange(10.0), np.arange(10.0) ** 2)
+
+    def same():
+        qtbot.wait(5)
+        for box, curve in curves.items():
+            assert curve.boundingRect() == curve.mapRectFromView(box.viewRect()).normalized()
+
+    side.setGeometry(main.sceneBoundingRect())
+    same()
+    main.setRange(xRange=(2, 4), yRange=(0, 1), padding=0)
+    same()
+    side.setYRange(-5, 5, padding=0)
+    same()
+    widget.resize(300, 200)
+    side.setGeometry(main.sceneBoundingRect())
+    same()
+    curves[main].set_samples(np.arange(5.0), np.ones(5))  # new data: the same geometry
     same()
