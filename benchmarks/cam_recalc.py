@@ -29,11 +29,13 @@ import os
 import statistics
 import sys
 import time
+import traceback
 
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 import numpy as np  # noqa: E402
 import pyqtgraph as pg  # noqa: E402
+from pyqtgraph import debug as pg_debug  # noqa: E402
 from PySide6.QtCore import QEvent, QPoint, QPointF, Qt  # noqa: E402
 from PySide6.QtGui import QMouseEvent  # noqa: E402
 from PySide6.QtWidgets import QApplication  # noqa: E402
@@ -74,6 +76,8 @@ def _pixel(editor: CamEditor, master: float, slave: float) -> QPoint:
 
 
 def measure(app: QApplication, name: str, c: Curve, index: int, info: bool = False, zoomed: bool = False) -> None:
+    sys.excepthook = _fail_on_slot_errors
+    pg_debug.printExc = _fail_on_ignored_errors  # what pyqtgraph's warnOnException (paint) reports through
     editor = CamEditor()
     editor.confirm = False
     editor.resize(1400, 900)
@@ -125,14 +129,19 @@ def measure(app: QApplication, name: str, c: Curve, index: int, info: bool = Fal
 
 
 def _fail_on_slot_errors(kind, value, tb) -> None:
-    """An exception raised in a Qt slot or event handler is only printed by PySide; a benchmark that went on
-    would time a broken drag."""
+    """An exception raised in a Qt slot or event handler is only printed by PySide (and one in a paint() by
+    pyqtgraph); a benchmark that went on would time a broken drag."""
     sys.__excepthook__(kind, value, tb)
     os._exit(1)
 
 
+def _fail_on_ignored_errors(msg: str = "", *args, **kwargs) -> None:
+    traceback.print_exc()
+    print(f"cam_recalc: {msg}", file=sys.stderr)
+    os._exit(1)
+
+
 def main() -> None:
-    sys.excepthook = _fail_on_slot_errors
     app = QApplication.instance() or QApplication(sys.argv)
     pg.setConfigOption("mouseRateLimit", 0)  # time every move (the editor itself keeps pyqtgraph's default)
     for info in (False, True):

@@ -9,6 +9,8 @@ checks ordering and finiteness once), the PPoly object and its copies.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from scipy.interpolate import PPoly
 from scipy.linalg import LinAlgError
@@ -26,6 +28,8 @@ def coefficients(xs: np.ndarray, ys: np.ndarray, left: float | None, right: floa
         raise ValueError("`x` must be strictly increasing sequence.")
     if not (np.isfinite(xs).all() and np.isfinite(ys).all()):
         raise ValueError("`x` and `y` must contain only finite values.")
+    if not all(math.isfinite(end) for end in (left, right) if end is not None):
+        raise ValueError("the end slopes must be finite values.")
     slope = np.diff(ys) / dx
     # the system for the slopes s[0..n-1], rows as in scipy's CubicSpline (sub-, main and super-diagonal)
     sub = np.empty(n - 1)

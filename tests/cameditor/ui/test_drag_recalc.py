@@ -230,9 +230,14 @@ def test_a_drag_repaints_only_the_strip_that_changed_and_the_screen_is_a_full_re
 
 def test_the_point_column_fits_the_largest_point_number(qtbot, editor):
     """The Fix Points table's Point column is as wide as Qt's own fit to the contents would make it, for a long
-    curve (measured on the last row only) and a short one (then the header is the widest)."""
+    curve (measured on the last row only), a short one (then the header is the widest) and after a new font."""
     table = editor.fix_table.view
     for curve in (_long_curve(), Curve("short", 4000, (FixPoint(0, 0), FixPoint(4000, 3600)))):
         _open(editor, curve)
         qtbot.wait(10)
         assert table.columnWidth(0) == max(table.sizeHintForColumn(0), table.horizontalHeader().sectionSizeHint(0))
+    font = table.font()
+    font.setPointSizeF(font.pointSizeF() * 1.8)
+    table.setFont(font)  # bigger numbers: fitted again
+    qtbot.wait(10)
+    assert table.columnWidth(0) == max(table.sizeHintForColumn(0), table.horizontalHeader().sectionSizeHint(0))

@@ -36,8 +36,18 @@ def test_markers_remember_exactly_pyqtgraphs_bounding_rect(qtbot):
     widget.addItem(markers)
 
     def same():
+        """Equal to pyqtgraph's own rect, worked out now and by a fresh item with the same points (no caches)."""
         qtbot.wait(5)
         assert markers.boundingRect() == pg.ScatterPlotItem.boundingRect(markers)
+        x, y = markers.getData()
+        if not len(x):  # (empty: pyqtgraph keeps the last spots' padding, a fresh item has none)
+            return
+        fresh = pg.ScatterPlotItem(x=x.copy(), y=y.copy(), size=markers.opts["size"], symbol="s")
+        widget.addItem(fresh)
+        try:
+            assert markers.boundingRect() == fresh.boundingRect()
+        finally:
+            widget.removeItem(fresh)
 
     markers.setData([0.0, 10.0, 20.0], [1.0, 5.0, -3.0])
     same()
@@ -51,6 +61,11 @@ def test_markers_remember_exactly_pyqtgraphs_bounding_rect(qtbot):
     same()
     widget.resize(300, 200)  # another view size
     same()
+    markers.hide_point(1)  # a drag starts: the point is drawn apart
+    same()
+    markers.move_point(1, 250.0, -80.0)  # ... and ends beyond the others: the item grows
+    same()
+    assert markers.data["visible"].all() and (markers.data["x"][1], markers.data["y"][1]) == (250.0, -80.0)
     markers.setData([], [])
     same()
 

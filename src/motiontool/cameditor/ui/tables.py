@@ -6,7 +6,7 @@ model (cameditor.editing) and shows the result, or the model's error, and the ta
 
 from __future__ import annotations
 
-from PySide6.QtCore import QAbstractTableModel, QModelIndex, Qt, Signal
+from PySide6.QtCore import QAbstractTableModel, QEvent, QModelIndex, Qt, Signal
 from PySide6.QtGui import QBrush, QColor, QKeySequence
 from PySide6.QtWidgets import (
     QAbstractItemView,
@@ -114,6 +114,12 @@ class TypeDelegate(QStyledItemDelegate):
 
 class _Table(QTableView):
     delete_requested = Signal(int)
+    restyled = Signal()  # a new font or style: what was measured must be measured again
+
+    def changeEvent(self, event) -> None:  # noqa: N802 - Qt override
+        super().changeEvent(event)
+        if event.type() in (QEvent.Type.FontChange, QEvent.Type.StyleChange):
+            self.restyled.emit()
 
     def keyPressEvent(self, event) -> None:  # noqa: N802 - Qt override
         if event.matches(QKeySequence.StandardKey.Delete) or event.key() == Qt.Key.Key_Delete:
@@ -158,6 +164,7 @@ class FixPointTable(QWidget):
         # thousand rows for their text after every reset (~80 ms for a 10 000-point curve)
         self.view.horizontalHeader().setSectionResizeMode(0, QHeaderView.ResizeMode.Fixed)
         self.model.modelReset.connect(self._fit_point_column)
+        self.view.restyled.connect(self._fit_point_column)
         self.view.setAlternatingRowColors(False)
         self.add_button = QPushButton("Add...")
         self.add_button.clicked.connect(self.add_clicked)
