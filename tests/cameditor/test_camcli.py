@@ -110,6 +110,21 @@ def test_dat_cli_round_trip(tmp_path):
     assert read_config(other).curve("stamping") == read_config(zbc).curve("stamping")
 
 
+def test_import_errors_name_the_file(tmp_path, capsys):
+    """Bad input gets a clear error naming the place, and nothing the user had is lost (DEVELOPERS.md): import
+    and build add to a .zbc the same way."""
+    zbc, dat, broken = tmp_path / "a.zbc", tmp_path / "a.dat", tmp_path / "broken.zbc"
+    assert run(["cam", "build", *STAMPING, "-o", str(zbc)]) == 0
+    assert run(["cam", "export", str(zbc), "-o", str(dat)]) == 0
+    broken.write_text("not a configuration file\n")
+    capsys.readouterr()
+    assert run(["cam", "import", str(dat), "-o", str(broken)]) == 1
+    assert f"cannot add to {broken}" in capsys.readouterr().err
+    assert broken.read_text() == "not a configuration file\n"
+    assert run(["cam", "import", str(tmp_path / "missing.dat"), "-o", str(zbc)]) == 1
+    assert f"cannot read {tmp_path / 'missing.dat'}" in capsys.readouterr().err
+
+
 @pytest.mark.parametrize(("mutate", "line", "message"), [
     (lambda t: t.replace("format 1", "format 9"), 1, "unsupported"),
     (lambda t: t.replace("name = ", "nom = "), 2, "name"),

@@ -96,7 +96,11 @@ def cmd_build(args: argparse.Namespace) -> int:
     except (CurveError, _InputError) as exc:
         print(f"{prog}: error: {exc}", file=sys.stderr)
         return 1
-    out: Path = args.output
+    return _add_curve(prog, args.output, curve)
+
+
+def _add_curve(prog: str, out: Path, curve: Curve) -> int:
+    """Add ``curve`` to the .zbc file ``out`` (created when missing); 1 after printing the error."""
     try:
         config = read_config(out) if out.exists() else ConfigFile()
     except ConfigError as exc:
@@ -151,13 +155,10 @@ def cmd_import(args: argparse.Namespace) -> int:
     prog = "motiontool cam import"
     try:
         curve = read_dat(args.dat).to_curve()
-        config = read_config(args.output) if args.output.exists() else ConfigFile()
-        config.add_curve(curve)
-        write_config(args.output, config)
-    except (DatError, ConfigError, CurveError, CurveArrayError) as exc:
+    except (DatError, CurveError, CurveArrayError) as exc:
         print(f"{prog}: error: {exc}", file=sys.stderr)
         return 1
     except OSError as exc:
-        print(f"{prog}: error: {exc.strerror or exc}", file=sys.stderr)
+        print(f"{prog}: error: cannot read {args.dat}: {exc.strerror or exc}", file=sys.stderr)
         return 1
-    return 0
+    return _add_curve(prog, args.output, curve)
