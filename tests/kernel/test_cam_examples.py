@@ -1,6 +1,7 @@
 """The Design Guide's CAM application programs (DG 1342-1772) on the simulator, with a simulated conveyor master.
 
-The programs are in tests/kernel/cam_examples/*.m as printed in the manual; their curve arrays are the manual's
+The programs are the compiler tests' copies of the manual's (tests/aposs/examples/D07-D09, with their OCR repairs)
+and, for the CAM box fragment, tests/kernel/cam_examples/cambox.m with its set-up; the curve arrays are the manual's
 curves (tests/camcurve/conftest.py) encoded with camcurve.layout.encode and restored into the controller as a
 .zbc download would (DG 1466-1468: "Load the .zbc file … by means of Parameters → Restore from file").
 """
@@ -20,6 +21,9 @@ from tests.camcurve.conftest import marker_curve, stamping_curve
 from tests.kernel.helpers import start
 
 EXAMPLES = Path(__file__).parent / "cam_examples"
+MANUAL = Path(__file__).parents[1] / "aposs" / "examples"
+STAMPING, MARKER, SLAVESYNC = (MANUAL / name for name in ("D07_cam_stamping.m", "D08_cam_marker_correction.m",
+                                                          "D09_cam_slave_marker.m"))
 QC_PER_MU = 2048 / 55          # DG 1420: "2048/55 qc = 1 MU" (SYNCFACTM / SYNCFACTS)
 QC_PER_UU = 25 / 9             # DG 1428: "25/9 qc = 1 UU" (POSFACT_Z / POSFACT_N)
 CONVEYOR = 4000 * QC_PER_MU / 1000  # DG 1442, 1452: 60 boxes/min of 4000 MU → master qc per ms
@@ -30,11 +34,11 @@ SETTINGS = {"SYNCFACTM": 2048, "SYNCFACTS": 55, "POSFACT_Z": 25, "POSFACT_N": 9,
 PLANT = PlantConfig(home_switch_qc=2000)
 
 
-def run_example(name: str, curve, settings=None, inputs=None, master=None, plant=None):
+def run_example(program: Path, curve, settings=None, inputs=None, master=None, plant=None):
     # the conveyor stands still until the test starts it; `master` can carry its photoelectric beam (input 5)
     link = EmbeddedLink(plant or PLANT, master=master or MasterConfig())
     link.call("restore_arrays", arrays=[{"name": curve.name, "values": encode(curve)}])
-    run = start((EXAMPLES / name).read_text(), settings={**SETTINGS, **(settings or {})}, inputs=inputs, link=link)
+    run = start(program.read_text(), settings={**SETTINGS, **(settings or {})}, inputs=inputs, link=link)
     ctl = run.controller
     for _ in range(200):  # HOME, SETCURVE, POSA CURVEPOS
         run.advance(100)
@@ -63,7 +67,7 @@ def test_stamping_roller_follows_the_curve_and_runs_at_1_2_through_the_tangent_s
     does not cause any movement since the master is idle and in the correct position"; then the master is started.
     DG 1448: "Master and slave must run synchronously with the same velocity between the position 1500 and 2500" —
     the tangent (1500,1200)-(2500,2400) has slope 1.2 UU/MU; a cycle advances the roller one turn (3600 UU)."""
-    run = run_example("stamping.m", stamping_curve())
+    run = run_example(STAMPING, stamping_curve())
     ctl = run.controller
     f = profile(stamping_curve())
     assert ctl.axis.mode == "cam" and ctl.read_pseudo(0, 4230) == 1000     # CMASTERCPOS (SYSVAR 4230)
@@ -115,7 +119,7 @@ def test_printing_with_marker_engages_with_pair_1_and_disengages_with_pair_2_to_
     not begin until the next edge comes from the sensor" (DG 1558-1560) — the marker correction itself is
     tested in tests/kernel/test_cam_markers.py."""
     boxes = MasterConfig(marker_period_qc=4000 * QC_PER_MU, marker_offset_qc=20000)
-    run = run_example("marker.m", marker_curve(), settings={"SYNCMPULSM": 2375, "SYNCMWINM": 200, "SYNCMTYPM": 2},
+    run = run_example(MARKER, marker_curve(), settings={"SYNCMPULSM": 2375, "SYNCMWINM": 200, "SYNCMTYPM": 2},
                       master=boxes)
     ctl = run.controller
     f = profile(marker_curve())
@@ -158,7 +162,7 @@ def test_cam_box_calls_the_drier_and_switches_outputs_at_curve_master_positions(
     """DG 1764-1772: "ON MCPOS 2500 GOSUB drier // Call up a subprogram when the master position 2500 is passed
     in positive direction" — OUT 1 1, DELAY 300, OUT 1 0, once per cycle; CR 2985-3016: ON posint … SETOUT sets an
     output in the background (output 2 on from 1500 to 2500 of every cycle)."""
-    run = run_example("cambox.m", stamping_curve())
+    run = run_example(EXAMPLES / "cambox.m", stamping_curve())
     ctl = run.controller
     start_conveyor(ctl, ramp_ms=10)
     trace = []

@@ -1,8 +1,8 @@
 """The Design Guide's marker applications on the simulator: "Printing of Cardboard Boxes with Marker Correction"
 (SYNCCMM, DG 1493-1566), "Slave Synchronization with Marker" (SYNCCMS, DG 1608-1746) and "Packaging with Varying
-Product Distance and Slip" (SYNCM, DG 1166-1340). The programs are tests/kernel/cam_examples/marker.m and
-slavesync.m and, for the packaging sample, tests/aposs/examples/D06_marker_sync.m (the same program is not kept
-twice); the curves are the manual's (tests/camcurve/conftest.py), restored as a .zbc download would.
+Product Distance and Slip" (SYNCM, DG 1166-1340). The programs are the compiler tests' copies of the manual's,
+tests/aposs/examples/D08_cam_marker_correction.m, D09_cam_slave_marker.m and D06_marker_sync.m (the same program
+is not kept twice); the curves are the manual's (tests/camcurve/conftest.py), restored as a .zbc download would.
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from motiontool.kernel.master import MasterConfig
 from motiontool.kernel.plant import PlantConfig
 from tests.camcurve.conftest import marker_curve, slavesync_curve
 from tests.kernel.helpers import start
-from tests.kernel.test_cam_examples import QC_PER_MU, run_example, start_conveyor
+from tests.kernel.test_cam_examples import MARKER, QC_PER_MU, SLAVESYNC, run_example, start_conveyor
 
 D06 = Path(__file__).parents[1] / "aposs" / "examples" / "D06_marker_sync.m"
 
@@ -38,7 +38,7 @@ def test_printing_with_marker_correction_prints_every_irregular_box_at_its_front
     between 3000 and 1000, never while printing (1500 … 2500)."""
     first = 20000.0
     positions = tuple(first + (4000 * k + d) * QC_PER_MU for k, d in enumerate(BOX_DEVIATION))
-    run = run_example("marker.m", marker_curve(), settings={"SYNCMPULSM": 2375, "SYNCMWINM": 200, "SYNCMTYPM": 2},
+    run = run_example(MARKER, marker_curve(), settings={"SYNCMPULSM": 2375, "SYNCMWINM": 200, "SYNCMTYPM": 2},
                       master=MasterConfig(marker_positions_qc=positions))
     ctl = run.controller
     start_conveyor(ctl, ramp_ms=200)
@@ -92,7 +92,7 @@ def test_slave_synchronisation_with_marker_brings_every_box_to_the_stamp_at_slav
     beginning of a box are quite suitable", DG 1712), the curve master position is not corrected."""
     first = 30000.0
     boxes = tuple(first + (4000 * k + d) * UU for k, d in enumerate(SLIP))
-    run = run_example("slavesync.m", slavesync_curve(), settings=ROLLER,
+    run = run_example(SLAVESYNC, slavesync_curve(), settings=ROLLER,
                       master=MasterConfig(marker_period_qc=10000, marker_offset_qc=3000),
                       plant=PlantConfig(home_switch_qc=2000, slave_marker_positions_qc=boxes))
     ctl = run.controller
