@@ -82,9 +82,14 @@ def test_a_screen_curve_covers_what_its_view_shows(qtbot):
     side = pg.ViewBox()
     widget.getPlotItem().scene().addItem(side)
     side.setXLink(main)
+    main.setRange(xRange=(0, 10), yRange=(0, 100), padding=0)  # (no auto range: no range change below)
+    qtbot.wait(5)
     curves = {main: ScreenCurve(pen=pg.mkPen("r")), side: ScreenCurve(pen=pg.mkPen("b"))}
-    for box, curve in curves.items():
-        box.addItem(curve)
+    assert curves[main].boundingRect().isEmpty()  # no view yet; asked before it gets one
+    main.addItem(curves[main])
+    assert curves[main].boundingRect() == curves[main].mapRectFromView(main.viewRect()).normalized()
+    side.addItem(curves[side])
+    for curve in curves.values():
         curve.setData(np.arange(10.0), np.arange(10.0) ** 2)
 
     def same():

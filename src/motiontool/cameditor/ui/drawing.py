@@ -104,7 +104,7 @@ class ScreenCurve(pg.PlotCurveItem):
         self.prepareGeometryChange()
         super().viewRangeChanged()
 
-    def viewTransformChanged(self) -> None:  # noqa: N802 - pyqtgraph override
+    def viewTransformChanged(self) -> None:  # noqa: N802 - pyqtgraph override, also when the item gets its view
         self._view_rect = None
         super().viewTransformChanged()
 
