@@ -80,15 +80,15 @@ def test_add_and_delete_arrays_then_save_as_zba(window, tmp_path):
     """DG L4375-4420: Add Array appends after the last array and is created on Write; Delete Array removes
     it; Save As writes the list as a .zba (DG L4515-4523)."""
     editor = _open(window)
-    k = editor.add_array(4)
+    k = editor.add_array(size=4)
     assert k == 1
     assert editor.write_controller()
     assert [a["size"] for a in window.bridge.link.call("list_arrays")] == [3, 4]
-    assert editor.delete_array(0)
+    assert editor.delete_array(k=0)
     assert editor.write_controller()
     assert [a["size"] for a in window.bridge.link.call("list_arrays")] == [4]
     path = tmp_path / "machine.zba"
-    assert editor.save_as(path)
+    assert editor.save_as(path=path)
     zba = read_zba(path)
     assert any(r.kind == "Axis" and r.index == 3260 and r.name == "KPROP" for r in zba.records)
     assert "machine.zba" in editor.windowTitle()
@@ -104,7 +104,7 @@ def test_template_shows_only_its_items(window, tmp_path):
                     'Array,5,1,"Missing",,,,,"not on the controller",1\n'
                     'Array,0,3,"Locked",,,,,"read only",0\n')
     editor = _open(window)
-    assert editor.open_file(path)
+    assert editor.open_file(path=path)
     rows = editor.data_list.rows
     assert [editor.data_list.label(r) for r in rows] == [
         "Group -1 0 Set-up", "Axis 1 3260 Gain", "Array 0[2] Second", "Array 5[1] Missing", "Array 0[3] Locked"]

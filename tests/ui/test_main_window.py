@@ -31,7 +31,7 @@ def test_open_file_shows_text_and_cursor_position(window, tmp_path):
     editor = window.open_file(program)
     assert editor.toPlainText().startswith("DIM a[2]")
     assert window.tabs.tabText(window.tabs.currentIndex()) == "hello.m"
-    editor.goto_line(2, 2)
+    editor.goto_line(2, col=2)
     assert window.cursor_label.text() == "2:2"
     assert window.open_file(program) is editor  # one program, one window (ide-spec 1.1)
 
@@ -41,7 +41,7 @@ def test_sample_syntax_check_and_error_at_the_right_line(window, qtbot):
     editor = window.open_sample("01_positioning.m")
     qtbot.keyClick(editor, Qt.Key.Key_F4)
     assert "Syntax check: no errors" in window.messages.toPlainText()
-    editor.goto_line(5, 1)
+    editor.goto_line(5, col=1)
     editor.insertPlainText("POSA\n")
     assert window.development.syntax_check() is False
     text = window.messages.toPlainText()

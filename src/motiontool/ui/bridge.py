@@ -34,19 +34,19 @@ class LinkBridge(QObject):
     def connected(self) -> bool:
         return self.link is not None
 
-    def attach(self, link: Link, description: str, controller_id: int = 1) -> None:
+    def attach(self, link: Link, description: str, *, controller_id: int = 1) -> None:
         self.detach(close=False)
         self.link = link
         self.description = description
         self.controller_id = controller_id
         # Events are tagged with the controller they came from: after a switch, queued ones keep their ID.
-        self._callback = lambda event, cid=controller_id: self._event.emit((cid, event))
+        self._callback = lambda event, *, cid=controller_id: self._event.emit((cid, event))
         link.subscribe(self._callback)
         self._timer.start()
         self.connection_changed.emit("connected")
         self.poll()
 
-    def detach(self, close: bool = True) -> None:
+    def detach(self, *, close: bool = True) -> None:
         """Let go of the controller; with close=False its link stays open and its program keeps running."""
         if self.link is not None:
             self.link.unsubscribe(self._callback)

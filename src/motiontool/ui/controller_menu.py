@@ -166,7 +166,7 @@ class ProgramsDialog(QDialog):
                            ("Autostart off", lambda: self.autostart(False)),
                            ("Delete", self.delete), ("Delete all", self.delete_all), ("Close", self.accept)):
             button = QPushButton(text)
-            button.clicked.connect(lambda _checked=False, s=slot: s())
+            button.clicked.connect(lambda *_, s=slot: s())
             buttons.addWidget(button)
             self.buttons[text] = button
         layout = QVBoxLayout(self)
@@ -194,7 +194,7 @@ class ProgramsDialog(QDialog):
         row = self.table.currentRow()
         return int(self.table.item(row, 0).text()) if row >= 0 else None
 
-    def store(self, number: int | None = None, name: str | None = None) -> bool:
+    def store(self, *, number: int | None = None, name: str | None = None) -> bool:
         """Compile the current program into permanent memory: the next free number unless one is given."""
         outcome = self.w.development.compile_current()
         if outcome is None or not outcome.result.ok:
@@ -226,7 +226,7 @@ class ProgramsDialog(QDialog):
         if not ok:
             return False
         number, ok = QInputDialog.getInt(self, "Save as", "Program number (0-90):", 0, 0, 90)
-        return ok and self.store(number, name)
+        return ok and self.store(number=number, name=name)
 
     def _default_name(self) -> str:
         editor = self.w.current_editor()

@@ -25,7 +25,7 @@ class ControllerRegistry:
             self.links[controller_id] = EmbeddedLink(realtime_factor=self.realtime_factor)
         return self.links[controller_id]
 
-    def close(self, controller_id: int | None = None) -> None:
+    def close(self, *, controller_id: int | None = None) -> None:
         """Close Interface (one controller) or Close All Interfaces (None)."""
         for cid in ([controller_id] if controller_id is not None else list(self.links)):
             link = self.links.pop(cid, None)

@@ -60,7 +60,7 @@ class Debugger(QObject):
             for d in outcome.result.diagnostics:
                 messages.ide(d.format())
             messages.ide("Compiling debug failed: no debug session")
-            self.w.current_editor().goto_line(*outcome.first_error)
+            dev.goto_first_error(outcome)
             return False
         image = outcome.result.image
         size = len(image.to_bytes())

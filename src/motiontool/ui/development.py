@@ -44,7 +44,8 @@ class Development:
         except Exception as exc:  # noqa: BLE001 - any failure to open a link is reported, not raised
             self.w.messages.ide(f"Connection to controller {controller_id} failed: {exc}")
             return False
-        self.w.bridge.attach(link, f"Controller {controller_id}: simulated MCO 305 (embedded)", controller_id)
+        self.w.bridge.attach(link, f"Controller {controller_id}: simulated MCO 305 (embedded)",
+                             controller_id=controller_id)
         self.w.messages.ide(f"Connected to controller {controller_id} (embedded simulator)")
         return True
 
@@ -66,7 +67,7 @@ class Development:
                 self.w.messages.ide(f"Controller {cid}: {exc}")
 
     # --- compile ---------------------------------------------------------------------------------------
-    def compile_current(self, debug: bool = False) -> CheckOutcome | None:
+    def compile_current(self, *, debug: bool = False) -> CheckOutcome | None:
         editor = self.w.current_editor()
         if editor is None:
             return None
@@ -76,6 +77,10 @@ class Development:
         self.w.show_diagnostics(editor, result)
         first = next(((d.loc.line, d.loc.col) for d in result.errors), None)
         return CheckOutcome(result, first)
+
+    def goto_first_error(self, outcome: CheckOutcome) -> None:
+        line, col = outcome.first_error
+        self.w.current_editor().goto_line(line, col=col)
 
     def syntax_check(self) -> bool:
         """F4 (DG 2479-2483): test-compile; messages name line and text; the caret goes to the error."""
@@ -90,10 +95,10 @@ class Development:
             messages.ide("Syntax check: no errors" + (f", {warnings} warning(s)" if warnings else ""))
             return True
         messages.ide(f"Syntax check: {len(outcome.result.errors)} error(s)")
-        self.w.current_editor().goto_line(*outcome.first_error)
+        self.goto_first_error(outcome)
         return False
 
-    def compile_to_file(self, target: Path | None = None) -> bool:
+    def compile_to_file(self, *, target: Path | None = None) -> bool:
         outcome = self.compile_current()
         if outcome is None or not outcome.result.ok:
             if outcome is not None:
@@ -113,7 +118,7 @@ class Development:
         return True
 
     # --- run -------------------------------------------------------------------------------------------
-    def execute(self, ask: bool = True) -> bool:
+    def execute(self, *, ask: bool = True) -> bool:
         """F5 (DG 2380-2391): connect, stop a running program (after asking), compile, download to temporary
         memory, start."""
         if not self.connect_default():
@@ -136,7 +141,7 @@ class Development:
                 for d in outcome.result.diagnostics:
                     self.w.messages.ide(d.format())
                 self.w.messages.ide("Compilation error(s): program not executed")
-                self.w.current_editor().goto_line(*outcome.first_error)
+                self.goto_first_error(outcome)
                 return False
             image = outcome.result.image
             link.download(image.to_bytes(), name=image.name)

@@ -132,7 +132,7 @@ class MainWindow(QMainWindow):
                 return editor
         text = path.read_bytes().decode("utf-8", errors="replace").replace("\r\n", "\n")
         editor = self._add_editor(path.name, text, path)
-        editor.load_bookmarks(self.bookmark_store, path)
+        editor.load_bookmarks(self.bookmark_store, path=path)
         self._remember_recent(path)
         return editor
 
@@ -181,7 +181,7 @@ class MainWindow(QMainWindow):
         editor.setProperty("path", str(path) if path else "")
         editor.cursorLineColChanged.connect(lambda line, col: self.cursor_label.setText(f"{line}:{col}"))
         editor.textChanged.connect(self._live.start)
-        editor.document().modificationChanged.connect(lambda _m, e=editor: self._update_tab_title(e))
+        editor.document().modificationChanged.connect(lambda _m, *, e=editor: self._update_tab_title(e))
         editor.openLocationRequested.connect(self._open_location)
         self.tabs.setCurrentIndex(self.tabs.addTab(editor, title))
         editor.setFocus()
@@ -196,9 +196,9 @@ class MainWindow(QMainWindow):
         self._update_title()
 
     def _open_location(self, path: str, line: int, col: int) -> None:
-        self.open_file(Path(path)).goto_line(line, col)
+        self.open_file(Path(path)).goto_line(line, col=col)
 
-    def save(self, editor: CodeEditor | None = None, path: Path | None = None) -> bool:
+    def save(self, *, editor: CodeEditor | None = None, path: Path | None = None) -> bool:
         from motiontool.fileio import atomic_write_text
 
         editor = editor or self.current_editor()
@@ -225,10 +225,10 @@ class MainWindow(QMainWindow):
             return False
         chosen, _ = QFileDialog.getSaveFileName(self, "Save as", editor.property("path") or "program.m",
                                                 "APOSS programs (*.m)")
-        return bool(chosen) and self.save(editor, Path(chosen))
+        return bool(chosen) and self.save(editor=editor, path=Path(chosen))
 
-    def close_tab(self, index: int | bool = False) -> bool:
-        index = self.tabs.currentIndex() if isinstance(index, bool) else index
+    def close_tab(self, index: int) -> bool:
+        """Close tab `index` (the tab bar's close button sends it), asking to save a changed program."""
         editor = self.tabs.widget(index)
         if editor is None:
             return True
@@ -238,10 +238,10 @@ class MainWindow(QMainWindow):
                                           | QMessageBox.StandardButton.Cancel)
             if answer == QMessageBox.StandardButton.Cancel:
                 return False
-            if answer == QMessageBox.StandardButton.Save and not self.save(editor):
+            if answer == QMessageBox.StandardButton.Save and not self.save(editor=editor):
                 return False
         if editor.property("path"):
-            editor.save_bookmarks(self.bookmark_store, editor.property("path"))
+            editor.save_bookmarks(self.bookmark_store, path=editor.property("path"))
         self.recovery.discard(editor)
         self.tabs.removeTab(index)
         editor.deleteLater()

@@ -31,7 +31,8 @@ def build_menus(w) -> None:
     menus = [
         ("&File", [
             ("&New", "Ctrl+N", w.new_file), ("&Open...", "Ctrl+O", w.open_dialog), ("Recent &Files", None, "recent"),
-            ("&Close", None, w.close_tab), ("&Save", "Ctrl+S", lambda: w.save()), ("Save &as...", None, w.save_as),
+            ("&Close", None, lambda: w.close_tab(w.tabs.currentIndex())), ("&Save", "Ctrl+S", lambda: w.save()),
+            ("Save &as...", None, w.save_as),
             None, ("&Print...", "Ctrl+P", lambda: _print(w)), ("Print set&up...", None, None), None,
             ("Sa&mple", None, "samples"), None, ("E&xit Program", None, w.close),
         ]),
@@ -67,7 +68,7 @@ def build_menus(w) -> None:
             ("P&arameters", None, [("Save to file...", None, lambda: cm.save_parameters(w)),
                                    ("Restore from file...", None, lambda: cm.restore_parameters(w))]),
             ("&Memory", None, None),
-            ("&Reset", None, [(f"{title}...", None, lambda k=key: cm.reset(w, k))
+            ("&Reset", None, [(f"{title}...", None, lambda *, k=key: cm.reset(w, k))
                               for title, key, _effect in cm.RESET_ENTRIES]),
             None, ("Error &History...", None, lambda: _error_history(w)),
             ("&Diagnostic Report...", None, lambda: cm.diagnostic_report(w)),
@@ -95,7 +96,7 @@ def build_menus(w) -> None:
             if slot == "samples":
                 sub = menu.addMenu(text)
                 for name in _samples():
-                    sub.addAction(name, lambda n=name: w.open_sample(n))
+                    sub.addAction(name, lambda *, n=name: w.open_sample(n))
                 w.samples_menu = sub
                 continue
             if slot == "recent":
@@ -116,7 +117,7 @@ def build_menus(w) -> None:
                 sub = menu.addMenu(text)
                 for sub_text, _keys, sub_slot in slot:
                     action = sub.addAction(sub_text)
-                    action.triggered.connect(lambda _checked=False, s=sub_slot: s())
+                    action.triggered.connect(lambda *_, s=sub_slot: s())
                     w.actions_by_text[sub_text.replace("&", "")] = action
                 continue
             action = menu.addAction(text)
@@ -125,7 +126,7 @@ def build_menus(w) -> None:
             if slot is None:
                 action.setEnabled(False)  # not built yet; the entry shows where it will be
             else:
-                action.triggered.connect(lambda _checked=False, s=slot: s())
+                action.triggered.connect(lambda *_, s=slot: s())
             w.actions_by_text[text.replace("&", "")] = action
 
 
@@ -133,7 +134,7 @@ def fill_recent_menu(w) -> None:
     menu: QMenu = w.recent_menu
     menu.clear()
     for path in w.recent_files():
-        menu.addAction(path, lambda p=path: w.open_file(Path(p)))
+        menu.addAction(path, lambda *, p=path: w.open_file(Path(p)))
     menu.setEnabled(bool(w.recent_files()))
 
 

@@ -194,7 +194,7 @@ class WatchAddDialog(QDialog):
             self.index.setRange(1, min(self.pane.arrays[array][1], MAX_ARRAY_WATCH))
         self.system.clearSelection()
 
-    def add_selected(self, system: bool = False) -> None:
+    def add_selected(self, *, system: bool = False) -> None:
         fmt = self.format.currentText()
         item = self.system.currentItem()
         if (system or self.program.currentRow() < 0) and item is not None and item.parent() is not None:

@@ -68,7 +68,7 @@ def test_free_run_posa_trapezoid_and_tracking_error(qtbot, link, make, tmp_path)
     group = "Test Group (Free Run)"
     assert [g.name for g in w.scope.groups] == [group]
     for signal in ("APOS", "CPOS", "TRACKERR"):
-        w.add_signal_curve(signal, group)
+        w.add_signal_curve(signal, group=group)
     click(qtbot, w, w.start_action)
     start_program(link, POSA)
     run_for(w, link, 1000)
@@ -97,7 +97,7 @@ def test_free_run_posa_trapezoid_and_tracking_error(qtbot, link, make, tmp_path)
 def test_pause_then_start_keeps_the_data_and_marks_the_pause(qtbot, link, make):
     """DG 5943: Pause then Start keeps the data and draws a red bar where recording paused."""
     w = make(link, "free_run")
-    w.add_signal_curve("4119", "Test Group (Free Run)")
+    w.add_signal_curve("4119", group="Test Group (Free Run)")
     click(qtbot, w, w.start_action)
     run_for(w, link, 200)
     click(qtbot, w, w.pause_action)
@@ -123,7 +123,7 @@ def test_single_shot_at_1_ms_uploads_exactly_the_configured_count(qtbot, link, m
     dialog.accept()
     assert (group.count, group.interval_ms, group.cyclic, group.destination) == (750, 1, False, "DYNMEM")
     for signal in ("4097", "4098", "4102"):
-        w.add_signal_curve(signal, group.name)
+        w.add_signal_curve(signal, group=group.name)
     start_program(link, POSA)
     click(qtbot, w, w.start_action)
     run_for(w, link, 2000)
@@ -185,7 +185,7 @@ def test_tune_shows_overshoot_for_a_high_kprop_and_less_after_lowering_it(qtbot,
 def test_cursors_read_the_right_delta_t(qtbot, link, make):
     """DG 4781-4787, 5030-5038: cursors A and B; columns A, B, B−A; Δt and 1/Δt."""
     w = make(link, "free_run")
-    w.add_signal_curve("4119", "Test Group (Free Run)")   # sys_clock: value = time
+    w.add_signal_curve("4119", group="Test Group (Free Run)")   # sys_clock: value = time
     click(qtbot, w, w.start_action)
     run_for(w, link, 1000)
     click(qtbot, w, w.stop_action)
@@ -222,7 +222,7 @@ def test_polling_title_shows_rate_and_load(qtbot, link, make, tmp_path):
 def test_saved_file_reopens_offline_with_its_data(qtbot, link, make, tmp_path):
     """DG 5277-5285 / ide-spec S20.6: reopened, the data is there, Status is white, nothing connected."""
     w = make(link, "free_run")
-    w.add_signal_curve("4119", "Test Group (Free Run)")
+    w.add_signal_curve("4119", group="Test Group (Free Run)")
     click(qtbot, w, w.start_action)
     run_for(w, link, 300)
     click(qtbot, w, w.stop_action)
@@ -244,7 +244,7 @@ def test_open_scope_from_the_main_window(qtbot, tmp_path):
     try:
         scope = open_scope(main)
         assert scope.link is main.bridge.link is not None
-        scope.add_signal_curve("4119", "Test Group (Free Run)")
+        scope.add_signal_curve("4119", group="Test Group (Free Run)")
         click(qtbot, scope, scope.start_action)
         qtbot.waitUntil(lambda: len(scope.scope.curves[0].buffer) > 20, timeout=5000)
         click(qtbot, scope, scope.stop_action)
@@ -263,8 +263,8 @@ def test_curve_properties_scale_validate_smooth_and_share(qtbot, link, make, tmp
 
     w = make(link, "free_run")
     group = "Test Group (Free Run)"
-    w.add_signal_curve("APOS", group)
-    w.add_signal_curve("CPOS", group)
+    w.add_signal_curve("APOS", group=group)
+    w.add_signal_curve("CPOS", group=group)
     click(qtbot, w, w.start_action)
     start_program(link, POSA)
     run_for(w, link, 6000)
@@ -280,7 +280,7 @@ def test_curve_properties_scale_validate_smooth_and_share(qtbot, link, make, tmp
     dialog.center_zero.setChecked(True)
     dialog.zero_mark.setChecked(True)
     dialog.accept()
-    assert w.edit_properties("1: APOS", dialog)
+    assert w.edit_properties("1: APOS", dialog=dialog)
     item = w.list.item_for("1: APOS")
     assert item.text(MAX) == "10000" and item.text(MIN) == "0"
     assert item.background(MAX).color().name() == "#ff9090" and item.background(MIN).style() == Qt.NoBrush
@@ -294,7 +294,7 @@ def test_curve_properties_scale_validate_smooth_and_share(qtbot, link, make, tmp
     share = PropertiesDialog(w.scope.curve("1: CPOS"), [c.name for c in w.scope.curves], w)
     share.share.setCurrentText("1: APOS")
     share.accept()
-    w.edit_properties("1: CPOS", share)
+    w.edit_properties("1: CPOS", dialog=share)
     assert w.chart.range_of(w.scope.curve("1: CPOS")) == (lo, hi)
     shot(w, "properties", tmp_path)
 
@@ -304,8 +304,8 @@ def test_triggered_free_run_stops_after_one_capture(qtbot, link, make, tmp_path)
     from motiontool.scope.ui.dialogs import TriggerDialog
 
     w = make(link, "free_run")
-    w.add_signal_curve("CPOS", "Test Group (Free Run)")
-    w.add_signal_curve("TRACKERR", "Test Group (Free Run)")
+    w.add_signal_curve("CPOS", group="Test Group (Free Run)")
+    w.add_signal_curve("TRACKERR", group="Test Group (Free Run)")
     dialog = TriggerDialog([c.name for c in w.scope.curves], w)
     dialog.enabled.setChecked(True)
     dialog.curve.setCurrentText("1: CPOS")
@@ -313,7 +313,7 @@ def test_triggered_free_run_stops_after_one_capture(qtbot, link, make, tmp_path)
     dialog.pre.setValue(100)
     dialog.post.setValue(400)
     dialog.accept()
-    w.trigger_dialog(dialog)
+    w.trigger_dialog(dialog=dialog)
     click(qtbot, w, w.start_action)
     run_for(w, link, 300)
     assert w.running and len(w.scope.curves[0].buffer) == 0   # armed, waiting
@@ -331,11 +331,11 @@ def test_add_curve_dialog_adds_polled_and_derived_curves(qtbot, link, make):
     from motiontool.scope.ui.dialogs import AddCurveDialog
 
     w = make(link, "free_run")
-    w.add_signal_curve("APOS", "Test Group (Free Run)")
+    w.add_signal_curve("APOS", group="Test Group (Free Run)")
     dlg = AddCurveDialog([g.name for g in w.scope.groups], [c.name for c in w.scope.curves], w)
     dlg.signal.setText("CPOS")
     dlg.method.setCurrentText("Polled (no group)")
-    w.add_curve_dialog(dlg)
+    w.add_curve_dialog(dlg=dlg)
     assert w.scope.curve("1: CPOS").source.method == "polled"
     assert w.list.item_for("1: CPOS").parent().text(0) == "Other Curves"
     dlg = AddCurveDialog([g.name for g in w.scope.groups], [c.name for c in w.scope.curves], w)
@@ -344,7 +344,7 @@ def test_add_curve_dialog_adds_polled_and_derived_curves(qtbot, link, make):
     dlg.base.setCurrentText("1: APOS")
     dlg.second.setCurrentText("1: CPOS")
     dlg.name.setText("APOS - CPOS")
-    w.add_curve_dialog(dlg)
+    w.add_curve_dialog(dlg=dlg)
     assert [c.name for c in w.scope.curves] == ["1: APOS", "APOS - CPOS", "1: CPOS"]
 
 
@@ -352,7 +352,7 @@ def test_status_colours_for_running_error_and_lost(qtbot, link, make):
     """DG 4916-4944 / ide-spec 6.14, S21.3: bright green running, dark green idle, red error (DECISION),
     orange lost (DECISION)."""
     w = make(link, "free_run")
-    w.add_signal_curve("APOS", "Test Group (Free Run)")
+    w.add_signal_curve("APOS", group="Test Group (Free Run)")
 
     def colour():
         w._on_status(None)
@@ -374,7 +374,7 @@ def test_grid_column_gives_a_curve_the_left_or_right_axis(qtbot, link, make):
     """DG 4878-4912 / ide-spec 6.13: one curve owns each axis side; a shared curve shows an up-arrow."""
     w = make(link, "free_run")
     for signal in ("APOS", "CPOS", "TRACKERR"):
-        w.add_signal_curve(signal, "Test Group (Free Run)")
+        w.add_signal_curve(signal, group="Test Group (Free Run)")
     w.scope.curve("1: CPOS").axis.share = "1: APOS"
     w.redraw()
     assert (w.chart.left_curve, w.chart.right_curve) == ("1: APOS", "1: TRACKERR")

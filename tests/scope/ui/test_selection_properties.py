@@ -28,8 +28,8 @@ def record(w, link, ms=200):
 
 def test_changing_the_selection_renames_clears_and_records_the_new_field(window, tmp_path):
     w, link = window
-    w.add_signal_curve("INPUTS", GROUP)
-    w.add_signal_curve("INPUTS.b1", GROUP)
+    w.add_signal_curve("INPUTS", group=GROUP)
+    w.add_signal_curve("INPUTS.b1", group=GROUP)
     w.scope.curve("1: INPUTS").axis.share = "1: INPUTS.b1"
     link.call("set_input", number=2, value=1)
     link.call("set_input", number=9, value=1)
@@ -39,7 +39,7 @@ def test_changing_the_selection_renames_clears_and_records_the_new_field(window,
     assert dialog.select.currentText() == "b1" and dialog.select.isEnabled()
     dialog.select.setCurrentText("9")
     dialog.accept()
-    assert w.edit_properties("1: INPUTS.b1", dialog)
+    assert w.edit_properties("1: INPUTS.b1", dialog=dialog)
     curve = w.scope.curve("1: INPUTS.9")        # the suffix follows the selection, so does the shared axis
     assert curve.source.select == "9" and len(curve.buffer) == 0
     assert w.scope.curve("1: INPUTS").axis.share == "1: INPUTS.9"
@@ -53,7 +53,7 @@ def test_changing_the_selection_renames_clears_and_records_the_new_field(window,
     whole = PropertiesDialog(w.scope.curve("1: INPUTS.9"), [c.name for c in w.scope.curves], w)
     whole.select.setCurrentText(WHOLE_VALUE)
     whole.accept()
-    w.edit_properties("1: INPUTS.9", whole)
+    w.edit_properties("1: INPUTS.9", dialog=whole)
     assert w.scope.curve("1: INPUTS (2)").source.select is None   # "1: INPUTS" exists: made unique
 
 
@@ -61,11 +61,11 @@ def test_a_renamed_curve_keeps_its_name_and_a_bad_selection_is_refused(window, m
     from PySide6.QtWidgets import QMessageBox
 
     w, _ = window
-    w.add_signal_curve("INPUTS", GROUP, name="Inputs word")
+    w.add_signal_curve("INPUTS", group=GROUP, name="Inputs word")
     dialog = PropertiesDialog(w.scope.curve("Inputs word"), [c.name for c in w.scope.curves], w)
     dialog.select.setCurrentText("w2")
     dialog.accept()
-    w.edit_properties("Inputs word", dialog)
+    w.edit_properties("Inputs word", dialog=dialog)
     # a user name without the suffix gets it appended once it records a part of the value
     assert w.scope.curve("Inputs word.w2").source.select == "w2"
     warnings = []
@@ -82,7 +82,7 @@ def test_add_curve_dialog_takes_the_aposs_suffix(window):
     dlg = AddCurveDialog([GROUP], [], w)
     dlg.signal.setText("4104.sw1")
     dlg.method.setCurrentText(GROUP)
-    w.add_curve_dialog(dlg)
+    w.add_curve_dialog(dlg=dlg)
     curve = w.scope.curve("1: REG_STAT [4104].sw1")
     assert curve.source.signal == "4104" and curve.source.select == "sw1"
 
@@ -91,7 +91,7 @@ def test_derived_and_testsetp_curves_have_no_selection(window):
     from motiontool.scope.derived import DerivedSpec
 
     w, _ = window
-    w.add_signal_curve("APOS", GROUP)
+    w.add_signal_curve("APOS", group=GROUP)
     w.add_derived_curve(DerivedSpec("delta", "1: APOS"), "d")
     dialog = PropertiesDialog(w.scope.curve("d"), [c.name for c in w.scope.curves], w)
     assert not dialog.select.isEnabled() and dialog.select.currentText() == WHOLE_VALUE

@@ -90,7 +90,7 @@ def test_bookmarks_saved_outside_the_program(qtbot, editor, tmp_path):
     again = CodeEditor()
     qtbot.addWidget(again)
     again.setPlainText(program.read_text(encoding="utf-8"))
-    again.load_bookmarks(store, program)
+    again.load_bookmarks(store, path=program)
     assert again.bookmarks() == [2, 9]
     assert program.read_text(encoding="utf-8") == TEN_LINES
 
@@ -158,7 +158,7 @@ def test_case_bracket_select_overwrite_and_undo_keys(qtbot, editor):
     assert editor.toPlainText() == "POSA (A[1] + B)"
     press(qtbot, editor, Qt.Key.Key_U, CTRL)
     assert editor.toPlainText() == "posa (a[1] + b)"
-    editor.goto_line(1, 6)
+    editor.goto_line(1, col=6)
     press(qtbot, editor, Qt.Key.Key_B, CTRL)  # matching bracket
     assert editor.textCursor().position() == 14
     press(qtbot, editor, Qt.Key.Key_Insert)
@@ -277,9 +277,9 @@ def test_macro_records_editor_commands(qtbot, editor):
     editor.start_recording()
     press(qtbot, editor, Qt.Key.Key_F2, CTRL)  # toggle bookmark
     press(qtbot, editor, Qt.Key.Key_Down)
-    keys = editor.stop_recording("Ctrl+Shift+M")
+    keys = editor.stop_recording(shortcut="Ctrl+Shift+M")
     assert len(keys) == 2 and editor.macros.shortcuts() == ["Ctrl+Shift+M"]
-    editor.play_macro("Ctrl+Shift+M")
+    editor.play_macro(shortcut="Ctrl+Shift+M")
     assert editor.bookmarks() == [1, 2] and editor.caret_line_col()[0] == 3
 
 
@@ -350,7 +350,7 @@ def test_diagnostics_draw_wavy_underlines_at_the_token(qtbot, editor):
 def test_goto_line_and_caret_signal(qtbot, editor):
     editor.setPlainText(TEN_LINES)
     with qtbot.waitSignal(editor.cursorLineColChanged) as blocker:
-        editor.goto_line(7, 3)
+        editor.goto_line(7, col=3)
     assert blocker.args == [7, 3] and editor.caret_line_col() == (7, 3)
 
 
@@ -386,7 +386,7 @@ def test_margin_grows_with_line_count(editor):
 def test_keys_qt_already_provides(qtbot, editor):
     """ide-spec 1.14/1.15/1.18 keys that come with QPlainTextEdit still work inside the CodeEditor."""
     editor.setPlainText("alpha beta\ngamma delta")
-    editor.goto_line(1, 3)
+    editor.goto_line(1, col=3)
     press(qtbot, editor, Qt.Key.Key_End, CTRL)
     assert editor.textCursor().position() == len(editor.toPlainText())
     press(qtbot, editor, Qt.Key.Key_Backspace, CTRL)  # delete to the start of the word

@@ -128,7 +128,7 @@ def test_replace_all_is_one_undo_step(qtbot, editor, dialog):
 
 def test_replace_all_in_regex_mode_with_groups(editor):
     editor.setPlainText(PROGRAM)
-    count = editor.replace_all(r"vel(\d)", r"axis\1_vel", SearchOptions(mode="regex"))
+    count = editor.replace_all(r"vel(\d)", r"axis\1_vel", options=SearchOptions(mode="regex"))
     assert count == 3 and editor.toPlainText().startswith("axis1_vel = 10\naxis2_vel = 100")
 
 
@@ -144,7 +144,7 @@ def test_mark_all_bookmarks_every_hit_line(qtbot, editor, dialog):
 
 def test_ctrl_f3_finds_the_word_under_the_caret(qtbot, editor):
     editor.setPlainText("POSA a\nx = a + aa\nPRINT a")
-    editor.goto_line(1, 6)
+    editor.goto_line(1, col=6)
     press(qtbot, editor, Qt.Key.Key_F3, CTRL)
     assert selected(editor) == (2, "a")
     assert editor.textCursor().selectionStart() == 11
@@ -156,7 +156,7 @@ def test_ctrl_f3_finds_the_word_under_the_caret(qtbot, editor):
 
 def test_find_with_emoji_before_the_hit(editor):
     editor.setPlainText("// \U0001F600 comment\nPOSA 1")
-    assert editor.find("POSA")
+    assert editor.find(text="POSA")
     assert editor.textCursor().selectedText() == "POSA"
 
 
@@ -166,7 +166,7 @@ def test_find_in_files_dialog(qtbot, editor, tmp_path):
     (tmp_path / "lib" / "home.m").write_text("// home position\nSUBPROG home\n", encoding="utf-8")
     editor.setPlainText("GOSUB home\n")
     editor.file_path = tmp_path / "main.m"
-    editor.goto_line(1, 8)
+    editor.goto_line(1, col=8)
     dlg = editor.show_find_in_files()
     assert isinstance(dlg, FindInFilesDialog) and dlg.find_edit.text() == "home"
     hits = dlg.run_search()

@@ -176,7 +176,7 @@ class ArrayEditor(QMainWindow):
                 bar.setObjectName("array-editor-functions")
                 continue
             action = bar.addAction(text)
-            action.triggered.connect(lambda _checked=False, s=slot: s())
+            action.triggered.connect(lambda *_, s=slot: s())
             if keys:
                 action.setShortcut(QKeySequence(keys))
             self.actions[text] = action
@@ -263,7 +263,7 @@ class ArrayEditor(QMainWindow):
         self.data_list.set_to_controller(self.model.shown)
         self.model.values_changed()
 
-    def add_array(self, size: int | None = None) -> int | None:
+    def add_array(self, *, size: int | None = None) -> int | None:
         if size is None:
             size, ok = QInputDialog.getInt(self, "Add array", "Number of elements:", 10, 1, 100000)
             if not ok:
@@ -272,7 +272,7 @@ class ArrayEditor(QMainWindow):
         self._refresh()
         return k
 
-    def delete_array(self, k: int | None = None) -> bool:
+    def delete_array(self, *, k: int | None = None) -> bool:
         if k is None:
             rows = [self.data_list.rows[i] for i in self._selected_rows()]
             arrays = {r.record.array for r in rows if r.record.kind == "Array"}
@@ -284,7 +284,7 @@ class ArrayEditor(QMainWindow):
         self._refresh()
         return True
 
-    def open_file(self, path: Path | None = None) -> bool:
+    def open_file(self, *, path: Path | None = None) -> bool:
         if path is None:
             chosen, _ = QFileDialog.getOpenFileName(self, "Open array definition file", "",
                                                     "Array definition (*.zba)")
@@ -306,7 +306,7 @@ class ArrayEditor(QMainWindow):
     def save(self) -> bool:
         return self.save_as(self.path) if self.path else self.save_as()
 
-    def save_as(self, path: Path | None = None) -> bool:
+    def save_as(self, *, path: Path | None = None) -> bool:
         if path is None:
             chosen, _ = QFileDialog.getSaveFileName(self, "Save array definition file", "arrays.zba",
                                                     "Array definition (*.zba)")

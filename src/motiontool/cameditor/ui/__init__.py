@@ -15,7 +15,7 @@ def open_cam_editor(main_window):
         editor = CamEditor(link_provider=lambda: main_window.bridge.link, parent=main_window)
         editor.setWindowFlag(Qt.WindowType.Window, True)
         editor.setAttribute(Qt.WidgetAttribute.WA_DeleteOnClose, True)
-        editor.destroyed.connect(lambda _obj=None: setattr(main_window, "cam_editor", None))
+        editor.destroyed.connect(lambda *_: setattr(main_window, "cam_editor", None))
         main_window.cam_editor = editor
     editor.show()
     editor.raise_()

@@ -115,7 +115,7 @@ class CurveDataCard(QWidget):
         self.fields: dict[str, NumberField] = {}
         for name, label in self.FIELDS:
             field = NumberField()
-            field.entered.connect(lambda text, n=name: self.field_edited.emit(n, text))
+            field.entered.connect(lambda text, *, n=name: self.field_edited.emit(n, text))
             self.fields[name] = field
             right.addRow(label, field)
         grid.addLayout(left, 2, 0, 1, 2)
@@ -178,7 +178,7 @@ class CurveInfoCard(QWidget):
         for key, value, pct, unit in (("max_velocity", info.max_velocity, v_pct, "UU/MU"),
                                       ("max_acceleration", info.max_acceleration, a_pct, "UU/MU²")):
             # red above the limit [DG L3809, L3821]
-            self._show(key, f"{fmt(value, 5)} {unit}   ({fmt(round(pct, 1))} %)", OVER_LIMIT if pct > 100 else "")
+            self._show(key, f"{fmt(value, 5)} {unit}   ({fmt(round(pct, 1))} %)", style=OVER_LIMIT if pct > 100 else "")
         self._show("velocity_limit", f"{fmt(limits.velocity, 5)} UU/MU")
         self._show("acceleration_limit", f"{fmt(limits.acceleration, 5)} UU/MU²")
         self._show("max_jerk", f"{fmt(info.max_jerk, 5)} UU/MU³")
@@ -188,12 +188,12 @@ class CurveInfoCard(QWidget):
         # "This time should not be smaller than 30 milliseconds" [DG L3837]
         short = curve.interpolation and info.interval_time_ms < 20
         self._show("interval_time", fmt(round(info.interval_time_ms, 1)) if curve.interpolation
-                   else "- (no interpolation)", OVER_LIMIT if short else "")
+                   else "- (no interpolation)", style=OVER_LIMIT if short else "")
         tip = "shorter than 20-30 ms: use fewer intervals" if short else "30 to 100 ms are suitable"
         if self.labels["interval_time"].toolTip() != tip:
             self.labels["interval_time"].setToolTip(tip)
 
-    def _show(self, key: str, text: str, style: str | None = None) -> None:
+    def _show(self, key: str, text: str, *, style: str | None = None) -> None:
         label = self.labels[key]
         if label.text() != text:
             label.setText(text)
@@ -225,7 +225,7 @@ class ParameterCard(QWidget):
                 else:
                     param = db.get(number)
                     field.setToolTip(f"{param.label}: {param.description}")
-                    field.entered.connect(lambda text, n=number: self.parameter_edited.emit(n, text))
+                    field.entered.connect(lambda text, *, n=number: self.parameter_edited.emit(n, text))
                     self.fields[number] = field
                 grid.addWidget(field, r, 1)
                 grid.addWidget(QLabel(f"[{internal}]"), r, 2)

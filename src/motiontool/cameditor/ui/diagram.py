@@ -234,7 +234,7 @@ class CurveDiagram(pg.PlotWidget):
         # item may take the hover; skip that then (it asks every item for its shape on every move)
         scene, send_hover = self.scene(), self.scene().sendHoverEvents
 
-        def send_hover_unless_dragging(ev, exitOnly=False):  # noqa: N803 - pyqtgraph's signature
+        def send_hover_unless_dragging(ev, *, exitOnly=False):  # noqa: N803 - pyqtgraph's signature
             if exitOnly or self.box.dragged_point is None:
                 send_hover(ev, exitOnly)
 
@@ -284,7 +284,7 @@ class CurveDiagram(pg.PlotWidget):
             item.setData([], [])
         self._show_overlays(None)
 
-    def show_curve(self, curve: Curve, overlay: Overlay, dragging: bool = False) -> None:
+    def show_curve(self, curve: Curve, overlay: Overlay, *, dragging: bool = False) -> None:
         """Recompute the samples and redraw everything (the editor's "recalc").
 
         ``dragging``: one fix point of the shown curve moves (Continuous Recalc).  The samples are the same as
@@ -363,7 +363,7 @@ class CurveDiagram(pg.PlotWidget):
         red = ~straight[seg] | (joint & ~straight[before])
         return green, red
 
-    def _set_points(self, curve: Curve, prof, same_types: bool = False) -> None:
+    def _set_points(self, curve: Curve, prof, *, same_types: bool = False) -> None:
         pts = np.column_stack([prof.x, prof.y])
         if same_types and len(self.tangent) == len(pts):
             tangent = self.tangent  # a drag moves a point, its type stays
@@ -372,7 +372,7 @@ class CurveDiagram(pg.PlotWidget):
         self._place_points(pts, tangent, dragging=same_types)
         self.set_hover(self.box.hovered)
 
-    def _place_points(self, pts: np.ndarray, tangent: np.ndarray, dragging: bool = False) -> None:
+    def _place_points(self, pts: np.ndarray, tangent: np.ndarray, *, dragging: bool = False) -> None:
         """Draw the fix points.  While a point is dragged (``dragging``: only it moves), the others keep their
         picture and the dragged one is drawn by ``drag_marker``, so 10 000 markers are not redrawn per move; when
         the drag ends (or is undone) with only that point changed, its marker is moved back among the others."""
@@ -417,7 +417,7 @@ class CurveDiagram(pg.PlotWidget):
         pts = self.box.points
         show_one(self.hover, pts[index] if 0 <= index < len(pts) else None)
 
-    def _right_axis(self, shown: list[str], fit: bool = True) -> None:
+    def _right_axis(self, shown: list[str], *, fit: bool = True) -> None:
         """The right axis belongs to velocity, acceleration or jerk when exactly one is shown [DG L3892].
         ``fit`` scales the right-axis quantities to their curves (not while a point is dragged)."""
         if not fit and shown == self._shown_side:

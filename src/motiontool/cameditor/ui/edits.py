@@ -106,7 +106,7 @@ class EditsMixin:
             ov.slave_tolerance = parameter(p, "33-22")
         return ov
 
-    def _redraw(self, zoom: bool = False) -> None:
+    def _redraw(self, *, zoom: bool = False) -> None:
         curve = self.curve()
         self.diagram.box.accuracy = self.options.accuracy.value()
         if curve is None:
@@ -219,7 +219,7 @@ class EditsMixin:
                 action = (laws if code in LAW_TYPES else menu).addAction(name)
                 action.setCheckable(True)
                 action.setChecked(code == current)
-                action.triggered.connect(lambda _c=False, t=code: self.edit("Change type", editing.change_type,
+                action.triggered.connect(lambda *_, t=code: self.edit("Change type", editing.change_type,
                                                                             index, t))
             menu.addMenu(laws)
             menu.addSeparator()

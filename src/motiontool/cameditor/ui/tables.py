@@ -100,7 +100,7 @@ class TypeDelegate(QStyledItemDelegate):
     def createEditor(self, parent, option, index):  # noqa: N802 - Qt override
         combo = QComboBox(parent)
         combo.addItems(FIX_POINT_TYPES)
-        combo.activated.connect(lambda _i, c=combo: (self.commitData.emit(c), self.closeEditor.emit(c)))
+        combo.activated.connect(lambda _i, *, c=combo: (self.commitData.emit(c), self.closeEditor.emit(c)))
         return combo
 
     def setEditorData(self, editor, index) -> None:  # noqa: N802 - Qt override

@@ -87,12 +87,13 @@ class TraceOverlay:
             return None
         dialog = TraceColumnsDialog(self.editor, table)
         dialog.accepted.connect(lambda: self.apply(table, dialog.master.currentText(), dialog.slave.currentText(),
-                                                   dialog.master_scale.value(), dialog.slave_scale.value(),
-                                                   dialog.slave_offset.value()))
+                                                   master_scale=dialog.master_scale.value(),
+                                                   slave_scale=dialog.slave_scale.value(),
+                                                   slave_offset=dialog.slave_offset.value()))
         self.editor._open(dialog)
         return dialog
 
-    def apply(self, table: TraceTable, master: str, slave: str, master_scale: float = 1.0, slave_scale: float = 1.0,
+    def apply(self, table: TraceTable, master: str, slave: str, *, master_scale: float = 1.0, slave_scale: float = 1.0,
               slave_offset: float = 0.0) -> bool:
         if master == slave:
             self.editor.message("Trace: choose different columns for the master and the slave position")

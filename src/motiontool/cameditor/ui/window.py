@@ -129,34 +129,34 @@ class CamEditor(EditsMixin, QMainWindow):
         self.top.setSizes([930, 470])
         self.bottom.setSizes([420, 560, 420])
 
-    def _action(self, text: str, slot, icon=None, shortcut=None, tip: str = "") -> QAction:
+    def _action(self, text: str, slot, *, icon=None, shortcut=None, tip: str = "") -> QAction:
         action = QAction(text, self)
         if icon is not None:
             action.setIcon(self.style().standardIcon(icon))
         if shortcut:
             action.setShortcut(QKeySequence(shortcut))
         action.setToolTip(tip or text)
-        action.triggered.connect(lambda _checked=False: slot())
+        action.triggered.connect(lambda *_: slot())
         return action
 
     def _build_toolbar(self) -> None:
         sp = QStyle.StandardPixmap
         self.actions_by_name = {
-            "new": self._action("New", self.new_file, sp.SP_FileIcon, "Ctrl+N"),
-            "open": self._action("Open", self.open_dialog, sp.SP_DialogOpenButton, "Ctrl+O"),
-            "save": self._action("Save", self.save, sp.SP_DialogSaveButton, "Ctrl+S"),
+            "new": self._action("New", self.new_file, icon=sp.SP_FileIcon, shortcut="Ctrl+N"),
+            "open": self._action("Open", self.open_dialog, icon=sp.SP_DialogOpenButton, shortcut="Ctrl+O"),
+            "save": self._action("Save", self.save, icon=sp.SP_DialogSaveButton, shortcut="Ctrl+S"),
             "save_as": self._action("Save As", self.save_as_dialog),
             "zoom_reset": self._action("Zoom Reset", self.zoom_reset, tip="Show the whole curve"),
             "zoom_in": self._action("Zoom +", lambda: self.zoom(0.5), tip="Zoom In ×2 (central part)"),
             "zoom_out": self._action("Zoom −", lambda: self.zoom(2.0), tip="Zoom Out ×2"),
             "reset_splitters": self._action("Splitters", self.reset_splitters, tip="Reset splitters"),
-            "undo": self._action("Undo", self.undo, sp.SP_ArrowBack, "Ctrl+Z"),
-            "redo": self._action("Redo", self.redo, sp.SP_ArrowForward, "Ctrl+Y"),
+            "undo": self._action("Undo", self.undo, icon=sp.SP_ArrowBack, shortcut="Ctrl+Z"),
+            "redo": self._action("Redo", self.redo, icon=sp.SP_ArrowForward, shortcut="Ctrl+Y"),
             "snap_all": self._action("Snap all", self.snap_all, tip="Snap all Fix points and Start Stop points on "
                                                                     "the interpolation grid"),
-            "read": self._action("Read", self.read_from_controller, sp.SP_ArrowDown,
+            "read": self._action("Read", self.read_from_controller, icon=sp.SP_ArrowDown,
                                  tip="Read from controller: replaces all parameters and arrays"),
-            "write": self._action("Write", self.write_to_controller, sp.SP_ArrowUp,
+            "write": self._action("Write", self.write_to_controller, icon=sp.SP_ArrowUp,
                                   tip="Write to controller: parameters and arrays"),
             "import": self._action("Import", self.import_dialog, tip="Import a .dat curve (replaces the selected "
                                                                      "curve)"),
@@ -166,7 +166,7 @@ class CamEditor(EditsMixin, QMainWindow):
                                       "export): slave over master, modulo the master cycle"),
             "clear_trace": self._action("Clear trace", self.trace_overlay.clear, tip="Remove the measured trace"),
             "add": self._action("Add CAM array", self.add_array_dialog),
-            "delete": self._action("Delete array", self.delete_array, sp.SP_TrashIcon),
+            "delete": self._action("Delete array", self.delete_array, icon=sp.SP_TrashIcon),
         }
         bar = self.addToolBar("CAM-Editor")
         bar.setObjectName("cam_toolbar")
@@ -216,8 +216,8 @@ class CamEditor(EditsMixin, QMainWindow):
         for card in (self.sync_card, self.marker_card, self.encoder_card):
             card.parameter_edited.connect(self._parameter_edited)
 
-    def _redraw(self, zoom: bool = False) -> None:
-        super()._redraw(zoom)
+    def _redraw(self, *, zoom: bool = False) -> None:
+        super()._redraw(zoom=zoom)
         self.trace_overlay.show(self.curve())  # re-wrapped onto the shown curve's master cycle
 
     # -- state -----------------------------------------------------------------------------------------------------
@@ -228,7 +228,7 @@ class CamEditor(EditsMixin, QMainWindow):
         slot = self.slot()
         return slot.curve if slot else None
 
-    def message(self, text: str, error: bool = True) -> None:
+    def message(self, text: str, *, error: bool = True) -> None:
         """The message line: a refused edit's reason (red) or a notice; nothing the user had is lost."""
         self.message_line.setText(text)
         self.message_line.setStyleSheet("background: #ffe4e4; color: #a00000; padding: 3px" if error
@@ -246,7 +246,7 @@ class CamEditor(EditsMixin, QMainWindow):
             text += f" - {curve.name} [array {self.current}, {element_count(curve)} elements]"
         return text
 
-    def refresh(self, zoom: bool = False) -> None:
+    def refresh(self, *, zoom: bool = False) -> None:
         """Show the current slot everywhere."""
         self.array_combo.clear()
         for number, slot in enumerate(self.slots):
@@ -268,7 +268,7 @@ class CamEditor(EditsMixin, QMainWindow):
         for name in ("export", "import", "snap_all"):
             self.actions_by_name[name].setEnabled(curve is not None)
         self.actions_by_name["delete"].setEnabled(slot is not None)
-        self._redraw(zoom)
+        self._redraw(zoom=zoom)
 
     def _update_undo(self) -> None:
         slot = self.slot()
@@ -326,7 +326,7 @@ class CamEditor(EditsMixin, QMainWindow):
         answer = QMessageBox.question(self, "CAM-Editor", "Discard the changes?")
         return answer == QMessageBox.StandardButton.Yes
 
-    def _set_modified(self, modified: bool = True) -> None:
+    def _set_modified(self, *, modified: bool = True) -> None:
         self.modified = modified
         self.setWindowTitle(self.title())
 
@@ -338,7 +338,7 @@ class CamEditor(EditsMixin, QMainWindow):
             self.slots.append(Slot(entry.name, list(entry.values), curve))
         self.current = next((i for i, s in enumerate(self.slots) if s.curve), 0 if self.slots else -1)
         self.path = path
-        self._set_modified(False)
+        self._set_modified(modified=False)
         self.message("")
         self.refresh(zoom=True)
 
@@ -394,7 +394,7 @@ class CamEditor(EditsMixin, QMainWindow):
             self.message(f"Not saved: {exc}")
             return False
         self.path = path
-        self._set_modified(False)
+        self._set_modified(modified=False)
         self.message(f"Saved {path.name}", error=False)
         return True
 
@@ -412,7 +412,7 @@ class CamEditor(EditsMixin, QMainWindow):
             self.message(f"Read from controller failed: {exc}")
             return False
         self.load_config(config, self.path)
-        self._set_modified(True)
+        self._set_modified(modified=True)
         return True
 
     def write_to_controller(self) -> bool:

@@ -30,7 +30,7 @@ class ScaledAxis(pg.AxisItem):
         self._look = None          # (label, colour, show values) last applied
         super().__init__(orientation)
 
-    def set_mapping(self, low: float, high: float, label: str = "", colour: str | None = None,
+    def set_mapping(self, low: float, high: float, *, label: str = "", colour: str | None = None,
                     show_values: bool = True) -> None:
         """Called on every live frame: only what changed is applied, since a new label, pen or style makes
         pyqtgraph lay the axis out again (profiled: most of a live frame's axis cost, benchmarks/scope_stream)."""
@@ -108,7 +108,7 @@ class Chart(QWidget):
             line = pg.InfiniteLine(angle=90, movable=True, pen=pg.mkPen(colour, width=1.5),
                                    label=name, labelOpts={"position": 0.97, "color": colour, "fill": "#ffffffc0"})
             line.setVisible(False)
-            line.sigPositionChanged.connect(lambda ln, i=i: self._cursor_dragged(i, ln))
+            line.sigPositionChanged.connect(lambda ln, *, i=i: self._cursor_dragged(i, ln))
             self.plot.addItem(line, ignoreBounds=True)
             self.cursors.append(line)
         self.pause_lines: list[pg.InfiniteLine] = []
@@ -180,7 +180,7 @@ class Chart(QWidget):
         return self.ranges[root]
 
     # --- drawing -----------------------------------------------------------------------------------------------
-    def refresh(self, navigation: bool = True) -> None:
+    def refresh(self, *, navigation: bool = True) -> None:
         names = {c.name for c in self.scope.curves}
         for name in [n for n in self.items if n not in names]:
             self._cache.pop(name, None)
@@ -248,10 +248,11 @@ class Chart(QWidget):
             except KeyError:
                 curve = None
             if curve is None:  # no owner: no numbers that mean nothing
-                axis.set_mapping(0.0, 1.0, "", show_values=False)
+                axis.set_mapping(0.0, 1.0, show_values=False)
             else:
                 lo, hi = self.range_of(curve)
-                axis.set_mapping(lo, hi, f"{curve.name} [{curve.unit}]" if curve.unit else curve.name, curve.colour)
+                axis.set_mapping(lo, hi, label=f"{curve.name} [{curve.unit}]" if curve.unit else curve.name,
+                                 colour=curve.colour)
 
     def set_pauses(self, times: list[float]) -> None:
         """A red vertical bar where a paused recording resumed (DG 5943)."""

@@ -86,7 +86,7 @@ class CurveList(QTreeWidget):
         self._filling = False
         self.update_values()
 
-    def update_values(self, mouse_t: float | None = None) -> None:
+    def update_values(self, *, mouse_t: float | None = None) -> None:
         """Last/Min/Max, mouse and cursor columns; out-of-range values red (DG 5131-5141)."""
         ta, tb = self.scope.cursors
         self.headerItem().setText(A, "A" if ta is None else f"A {ta:.0f}ms")
@@ -126,7 +126,7 @@ class CurveList(QTreeWidget):
                 item.setToolTip(NAME, c.source.info["error"])
         self._filling = False
 
-    def _cell(self, item, col, curve: Curve, value, interpolated=False, check=True) -> None:
+    def _cell(self, item, col, curve: Curve, value, *, interpolated=False, check=True) -> None:
         if value is None:
             item.setText(col, "")
             item.setBackground(col, QBrush())

@@ -106,7 +106,7 @@ class RunControl:
         self._update_title()
 
 
-    def trigger_dialog(self, dialog: TriggerDialog | None = None) -> None:
+    def trigger_dialog(self, *, dialog: TriggerDialog | None = None) -> None:
         """Set the Free Run trigger; a dialog given here has been filled in and accepted already."""
         if dialog is None:
             dialog = TriggerDialog([c.name for c in self.scope.curves], self)
@@ -164,7 +164,7 @@ class RunControl:
         self.chart.refresh(navigation=False)  # the navigation pane is not drawn while recording (DG 5843)
         self._ticks += 1
         if self._ticks % LIST_EVERY == 0:  # numbers people read: 5 updates a second are plenty
-            self.list.update_values(self.mouse_t)
+            self.list.update_values(mouse_t=self.mouse_t)
             self._update_title()
 
 

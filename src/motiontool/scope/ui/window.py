@@ -159,11 +159,11 @@ class ScopeWindow(RunControl, QMainWindow):
             except LinkError:
                 state = "lost"
         self.list.controller_state = state
-        self.list.update_values(self.mouse_t)
+        self.list.update_values(mouse_t=self.mouse_t)
 
     def _on_connection(self, state: str) -> None:
         self.list.controller_state = "lost" if state == "lost" else self.list.controller_state
-        self.list.update_values(self.mouse_t)
+        self.list.update_values(mouse_t=self.mouse_t)
 
     # --- actions -------------------------------------------------------------------------------------------
     def _build_actions(self) -> None:
@@ -173,13 +173,13 @@ class ScopeWindow(RunControl, QMainWindow):
         self.mode_actions: dict[str, QAction] = {}
         for variant, title in TITLES.items():
             a = QAction(title, self, checkable=True)
-            a.triggered.connect(lambda _=False, v=variant: self.set_variant(v))
+            a.triggered.connect(lambda *_, v=variant: self.set_variant(v))
             self.mode_group.addAction(a)
             tb.addAction(a)
             self.mode_actions[variant] = a
         tb.addSeparator()
 
-        def act(text, slot, shortcut=None, checkable=False):
+        def act(text, slot, *, shortcut=None, checkable=False):
             a = QAction(text, self, checkable=checkable)
             a.triggered.connect(slot)
             if shortcut:
@@ -187,9 +187,9 @@ class ScopeWindow(RunControl, QMainWindow):
             tb.addAction(a)
             return a
 
-        self.start_action = act("Start", self.start, "F9")
+        self.start_action = act("Start", self.start, shortcut="F9")
         self.pause_action = act("Pause", self.pause)
-        self.stop_action = act("Stop", self.stop, "Shift+F9")
+        self.stop_action = act("Stop", self.stop, shortcut="Shift+F9")
         self.delete_action = act("Delete data", self.delete_data)
         self.add_action = act("Add curve", self.add_curve_dialog)
         self.load_action = act("Load TESTSETP", self.load_recordings)
@@ -203,7 +203,7 @@ class ScopeWindow(RunControl, QMainWindow):
         self.poll_box.valueChanged.connect(self._set_poll_ms)
         self.poll_box_action = tb.addWidget(self.poll_box)
         tb.addSeparator()
-        self.zoom_action = act("Zoom Reset", self.zoom_reset, "Ctrl+0")
+        self.zoom_action = act("Zoom Reset", self.zoom_reset, shortcut="Ctrl+0")
         self.cursor_a = act("Cursor A", lambda on: self.chart.show_cursor(0, on), checkable=True)
         self.cursor_b = act("Cursor B", lambda on: self.chart.show_cursor(1, on), checkable=True)
         self.cursor_a.toggled.connect(self._update_readout)
@@ -212,8 +212,8 @@ class ScopeWindow(RunControl, QMainWindow):
         self.shift_action = act("Shift to 0", self.toggle_shift, checkable=True)
         self.shift_action.setChecked(self.chart.shift_to_zero)
         self.export_action = act("Export", self.export_dialog)
-        self.save_action = act("Save", self.save_dialog, "Ctrl+S")
-        self.open_action = act("Open", self.open_dialog, "Ctrl+O")
+        self.save_action = act("Save", self.save_dialog, shortcut="Ctrl+S")
+        self.open_action = act("Open", self.open_dialog, shortcut="Ctrl+O")
         self.reconnect_action = QAction("Reconnect", self)
         file_menu = self.menuBar().addMenu("&File")
         for a in (self.open_action, self.save_action):
@@ -225,7 +225,7 @@ class ScopeWindow(RunControl, QMainWindow):
         for a in (self.cursor_a, self.cursor_b, self.zoom_action, self.shift_action):
             view.addAction(a)
 
-    def set_variant(self, variant: str, initial: bool = False) -> None:
+    def set_variant(self, variant: str, *, initial: bool = False) -> None:
         """Switch the variant: Free Run adds "Test Group (Free Run)", Single Shot asks for the recording and adds
         "Test Group (Single Shot)", TESTSETP uploads what it finds (DG 5287-5347)."""
         if self.running:
@@ -257,7 +257,7 @@ class ScopeWindow(RunControl, QMainWindow):
         self.redraw()
 
     # --- curves ----------------------------------------------------------------------------------------------
-    def add_signal_curve(self, signal: str, group: str | None = None, name: str | None = None):
+    def add_signal_curve(self, signal: str, *, group: str | None = None, name: str | None = None):
         """A curve of a link signal in a group ("Test Group (…)") or polled when group is None."""
         method = "polled" if group is None else self.scope.group(group).method
         curve = new_curve(self.scope, signal, group or "", method, name=name)
@@ -271,7 +271,7 @@ class ScopeWindow(RunControl, QMainWindow):
         self.redraw()
         return curve
 
-    def add_curve_dialog(self, dlg: AddCurveDialog | None = None) -> None:
+    def add_curve_dialog(self, *, dlg: AddCurveDialog | None = None) -> None:
         """Add Curve; a dialog given here is already filled in (scripted use) and counts as accepted."""
         if dlg is None:
             dlg = AddCurveDialog([g.name for g in self.scope.groups], [c.name for c in self.scope.curves], self)
@@ -290,8 +290,8 @@ class ScopeWindow(RunControl, QMainWindow):
                 self.redraw()
             else:
                 group = dlg.method.currentText()
-                self.add_signal_curve(dlg.signal.text(), None if group.startswith("Polled") else group,
-                                      dlg.name.text() or None)
+                self.add_signal_curve(dlg.signal.text(), group=None if group.startswith("Polled") else group,
+                                      name=dlg.name.text() or None)
         except (ValueError, KeyError) as exc:
             QMessageBox.warning(self, "Add Curve", str(exc))
 
@@ -325,7 +325,7 @@ class ScopeWindow(RunControl, QMainWindow):
         derived.refresh(self.scope)
         self.chart.refresh(navigation=not self.running)
         self.list.sides = (self.chart.left_curve, self.chart.right_curve)
-        self.list.update_values(self.mouse_t)
+        self.list.update_values(mouse_t=self.mouse_t)
         self._update_readout()
 
     def zoom_reset(self) -> None:
@@ -345,7 +345,7 @@ class ScopeWindow(RunControl, QMainWindow):
     def _mouse_time(self, t: float) -> None:
         self.mouse_t = t
         if not self.running:
-            self.list.update_values(t)
+            self.list.update_values(mouse_t=t)
 
     def _update_readout(self, *_) -> None:
         ta, tb = self.scope.cursors
@@ -358,7 +358,7 @@ class ScopeWindow(RunControl, QMainWindow):
             f = cursor_frequency(ta, tb)
             parts.append(f"Δt {tb - ta:.1f} ms" + (f"   1/Δt {f:.4g} Hz" if f else ""))
         self.readout.setText("   ".join(parts))
-        self.list.update_values(self.mouse_t)
+        self.list.update_values(mouse_t=self.mouse_t)
 
     def toggle_axis_side(self, name: str) -> None:
         """Grid column (DG 4878-4912): a click gives the curve the left axis scale, a second click the right;
@@ -383,7 +383,7 @@ class ScopeWindow(RunControl, QMainWindow):
             title += " [recording]" if not rec else f" [recording {rec['samples']}/{rec['limit']}]"
         self.setWindowTitle(title)
 
-    def edit_properties(self, name: str, dialog: PropertiesDialog | None = None) -> bool:
+    def edit_properties(self, name: str, *, dialog: PropertiesDialog | None = None) -> bool:
         """Properties (DG 5070-5236); scaling and ranges take effect at the next Zoom Reset (DG 5197)."""
         if dialog is None:  # else: a dialog already filled in and accepted (scripted use, tests)
             dialog = PropertiesDialog(self.scope.curve(name), [c.name for c in self.scope.curves], self)
@@ -411,16 +411,16 @@ class ScopeWindow(RunControl, QMainWindow):
                 self.trigger = (after, self.trigger[1])
 
     # --- files ---------------------------------------------------------------------------------------------
-    def save_to(self, path: Path | str, with_data: bool = True) -> None:
+    def save_to(self, path: Path | str, *, with_data: bool = True) -> None:
         zbo.save(self.scope, path, with_data)
         self.path = Path(path)
         self._update_title()
 
-    def save_dialog(self, with_data: bool = True) -> None:
+    def save_dialog(self, *, with_data: bool = True) -> None:
         path, _ = QFileDialog.getSaveFileName(self, "Save oscilloscope", str(self.path or ""),
                                               "Oscilloscope files (*.zbo)")
         if path:
-            self.save_to(path if path.endswith(".zbo") else path + ".zbo", with_data)
+            self.save_to(path if path.endswith(".zbo") else path + ".zbo", with_data=with_data)
 
     def export_to(self, path: Path | str) -> None:
         """Export the curves: MDF4 for a .mf4 path (needs asammdf: Mdf4Unavailable without it), else CSV."""

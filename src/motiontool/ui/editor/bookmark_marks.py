@@ -52,7 +52,7 @@ class BookmarkMixin:
         self.gutter.update()
         self.bookmarksChanged.emit()
 
-    def toggle_bookmark(self, line: int | None = None) -> bool:
+    def toggle_bookmark(self, *, line: int | None = None) -> bool:
         """Ctrl-F2: toggle the bookmark on `line` (default: the caret line); True if it is now set."""
         block = (self.textCursor().block() if line is None
                  else self.document().findBlockByNumber(line - 1))
@@ -79,14 +79,14 @@ class BookmarkMixin:
         """Shift-F2: the caret to the previous bookmarked line, wrapping."""
         return self._goto_bookmark(True)
 
-    def load_bookmarks(self, store: BookmarkStore, path: str | Path | None = None) -> None:
+    def load_bookmarks(self, store: BookmarkStore, *, path: str | Path | None = None) -> None:
         """Restore the bookmarks of `path` (default: file_path) from `store`."""
         path = path or self.file_path
         if path is not None:
             self.file_path = Path(path)
             self.set_bookmarks(store.load(path))
 
-    def save_bookmarks(self, store: BookmarkStore, path: str | Path | None = None) -> None:
+    def save_bookmarks(self, store: BookmarkStore, *, path: str | Path | None = None) -> None:
         path = path or self.file_path
         if path is not None:
             store.save(path, self.bookmarks())

@@ -55,16 +55,18 @@ _MODIFIER_KEYS = frozenset({Qt.Key.Key_Shift, Qt.Key.Key_Control, Qt.Key.Key_Alt
                             Qt.Key.Key_AltGr})
 _DIAG_TOKEN_RE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*|\d[A-Za-z0-9_.]*|\"[^\"]*\"?|\S")
 
-# key → method name, or (method name, arguments...) (ide-spec 1.14-1.19); Tab, Shift-Tab, Return: in code.
+# key → method name, or (method name, arguments..., {options}) (ide-spec 1.14-1.19); Tab, Shift-Tab, Return: in code.
 KEYMAP: dict[str, str | tuple] = {
     "F2": "next_bookmark", "Shift+F2": "previous_bookmark", "Ctrl+F2": "toggle_bookmark",
     "Ctrl+G": "goto_line_dialog", "Ctrl+B": "goto_matching_bracket",
     "Ctrl+Alt+Down": "goto_next_blank_line", "Ctrl+Alt+Up": "goto_previous_blank_line",
-    "Ctrl+Right": "move_word_end", "Ctrl+Shift+Right": ("move_word_end", True), "Ctrl+Alt+F8": "select_line",
+    "Ctrl+Right": "move_word_end", "Ctrl+Shift+Right": ("move_word_end", {"select": True}),
+    "Ctrl+Alt+F8": "select_line",
     "Ctrl+Ins": "copy", "Shift+Del": "cut", "Shift+Ins": "paste", "Ctrl+Y": "cut_line",
     "Ctrl+Alt+K": "cut_paragraph", "Ctrl+Del": "delete_word_end",
     "Ctrl+F": "show_find_dialog", "Alt+F3": "show_find_dialog", "Ctrl+R": "show_replace_dialog",
-    "F3": "find_next", "Shift+F3": "find_previous", "Ctrl+F3": "find_word", "Ctrl+Shift+F3": ("find_word", True),
+    "F3": "find_next", "Shift+F3": "find_previous", "Ctrl+F3": "find_word",
+    "Ctrl+Shift+F3": ("find_word", {"backward": True}),
     "Ins": "toggle_overwrite", "Alt+Backspace": "undo", "Ctrl+Z": "undo", "Ctrl+Shift+Z": "redo",
     "Ctrl+U": "lowercase_selection", "Ctrl+Shift+U": "uppercase_selection", "Ctrl+Shift+N": "insert_line_above",
     "Ctrl+Alt+R": "repeat_dialog", RECORD_SHORTCUT: "toggle_recording",
@@ -197,7 +199,7 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
         self.document().setModified(False)
 
     # --- diagnostics -----------------------------------------------------------------------------------
-    def set_diagnostics(self, diagnostics: Iterable, file: str | None = None, goto_first: bool = False) -> None:
+    def set_diagnostics(self, diagnostics: Iterable, *, file: str | None = None, goto_first: bool = False) -> None:
         """Show compiler diagnostics (``.severity``, ``.message``, ``.loc.line/.col``) as wavy underlines.
 
         With `file`, only diagnostics whose ``loc.file`` equals it are shown (others are in include files).
@@ -224,7 +226,7 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
         self.gutter.update()
         errors = [(line, col) for line, col, severity, _ in self.diagnostics() if severity == "error"]
         if goto_first and errors:
-            self.goto_line(*errors[0])
+            self.goto_line(errors[0][0], col=errors[0][1])
 
     def clear_diagnostics(self) -> None:
         self.set_diagnostics(())
@@ -244,7 +246,7 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
                 marks[number] = d.severity
         return marks
 
-    def _update_extra_selections(self, force: bool = True) -> None:
+    def _update_extra_selections(self, *, force: bool = True) -> None:
         """Current-line band and diagnostic squiggles. Setting them repaints the whole view, so a caret move
         within the same line (typing) skips it unless `force`."""
         block_number = self.textCursor().blockNumber()
@@ -340,7 +342,7 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
             self._popup_width = min(720, max((fm.horizontalAdvance(i.name) + fm.horizontalAdvance(i.hint[:60])
                                               for i in longest), default=0) + 64)
 
-    def complete(self, force: bool = True) -> bool:
+    def complete(self, *, force: bool = True) -> bool:
         """Ctrl-Space: open the completion popup for the word left of the caret; True if it is shown.
 
         Typing opens it (``force=False``) after AUTO_COMPLETE_LETTERS letters outside comments and strings,
@@ -412,14 +414,15 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
         key = event.key()
         action = self._keymap.get(combo)
         name, *args = (action,) if isinstance(action, str | None) else action
+        options = args.pop() if args and isinstance(args[-1], dict) else {}
         if self.isReadOnly():  # only moving, selecting, copying, finding and bookmarks
             if name is not None and name not in _EDITING:
-                getattr(self, name)(*args)
+                getattr(self, name)(*args, **options)
             elif name is None:
                 super().keyPressEvent(event)
             return
         if name is not None:
-            getattr(self, name)(*args)
+            getattr(self, name)(*args, **options)
             return
         cursor = self.textCursor()
         if key == Qt.Key.Key_Tab and not event.modifiers() & ~Qt.KeyboardModifier.KeypadModifier:
@@ -510,7 +513,7 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
                 continue
             text, keys, slot, enabled = entry
             action = menu.addAction(f"{text}\t{keys}" if keys else text)
-            action.triggered.connect(lambda _checked=False, s=slot: s())
+            action.triggered.connect(lambda *_, s=slot: s())
             action.setEnabled(enabled)
         return menu
 
@@ -521,5 +524,5 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
             menu.insertSeparator(menu.actions()[0])
             action = menu.addAction(f"Change value of {name}...")
             menu.insertAction(menu.actions()[0], action)
-            action.triggered.connect(lambda _checked=False, n=name: self.variableEditRequested.emit(n))
+            action.triggered.connect(lambda *_, n=name: self.variableEditRequested.emit(n))
         menu.exec(event.globalPos())

@@ -17,7 +17,7 @@ _Keep = QTextCursor.MoveMode.KeepAnchor
 
 class EditingMixin:
     # --- navigation ------------------------------------------------------------------------------------
-    def goto_line(self, line: int, col: int = 1) -> None:
+    def goto_line(self, line: int, *, col: int = 1) -> None:
         """Put the caret on 1-based `line`, before 1-based column `col` (clamped), and show it."""
         doc = self.document()
         block = doc.findBlockByNumber(max(0, min(line, doc.blockCount()) - 1))
@@ -50,7 +50,7 @@ class EditingMixin:
         self.setTextCursor(cursor)
         return True
 
-    def _goto_block(self, number: int, at_end: bool, select: bool = False) -> None:
+    def _goto_block(self, number: int, at_end: bool, *, select: bool = False) -> None:
         block = self.document().findBlockByNumber(number)
         cursor = self.textCursor()
         pos = block.position() + (block.length() - 1 if at_end else 0)
@@ -67,7 +67,7 @@ class EditingMixin:
         lines = self.toPlainText().split("\n")
         self._goto_block(textops.previous_blank_line(lines, self.textCursor().blockNumber()), at_end=True)
 
-    def move_word_end(self, select: bool = False) -> None:
+    def move_word_end(self, *, select: bool = False) -> None:
         """Ctrl-Right: end of the word; at a word's end, the end of the next word [DG L2108]."""
         cursor = self.textCursor()
         mode = _Keep if select else QTextCursor.MoveMode.MoveAnchor

@@ -54,7 +54,7 @@ class _OptionsBox(QGroupBox):
         layout.addWidget(self.whole_word)
         layout.addWidget(self.syntax)
 
-    def options(self, backward: bool = False, wrap: bool = True) -> SearchOptions:
+    def options(self, *, backward: bool = False, wrap: bool = True) -> SearchOptions:
         return SearchOptions(self.syntax.currentData(), self.match_case.isChecked(), self.whole_word.isChecked(),
                              backward, wrap)
 
@@ -114,7 +114,7 @@ class FindReplaceDialog(QDialog):
         self.close_button.clicked.connect(self.close)
         self.find_edit.textChanged.connect(lambda _t: self.status.clear())
 
-    def open_for(self, replace: bool = False) -> None:
+    def open_for(self, *, replace: bool = False) -> None:
         """Show the dialog (as Find or as Replace) with the selected word as the search text."""
         self.set_replace_mode(replace)
         word = self.editor.word_under_caret() if self.editor.textCursor().hasSelection() else ""
@@ -134,7 +134,7 @@ class FindReplaceDialog(QDialog):
             w.setVisible(replace)
 
     def options(self) -> SearchOptions:
-        return self.options_box.options(self.up.isChecked(), self.wrap.isChecked())
+        return self.options_box.options(backward=self.up.isChecked(), wrap=self.wrap.isChecked())
 
     def _run(self, action) -> object:
         self.status.clear()
@@ -145,7 +145,7 @@ class FindReplaceDialog(QDialog):
             return None
 
     def find_next(self) -> bool:
-        found = self._run(lambda: self.editor.find(self.find_edit.text(), self.options()))
+        found = self._run(lambda: self.editor.find(text=self.find_edit.text(), options=self.options()))
         if found is False:
             self.status.setText(f"Cannot find \u201c{self.find_edit.text()}\u201d.")
         elif found and self.editor.last_hit is not None and self.editor.last_hit.wrapped:
@@ -153,21 +153,21 @@ class FindReplaceDialog(QDialog):
         return bool(found)
 
     def mark_all(self) -> int:
-        count = self._run(lambda: self.editor.mark_all(self.find_edit.text(), self.options()))
+        count = self._run(lambda: self.editor.mark_all(self.find_edit.text(), options=self.options()))
         if count is not None:
             self.status.setText(f"{count} line(s) bookmarked; F2 walks through them.")
         return count or 0
 
     def replace(self) -> bool:
         done = self._run(lambda: self.editor.replace(self.find_edit.text(), self.replace_edit.text(),
-                                                     self.options()))
+                                                     options=self.options()))
         if done is not None and not self.editor.textCursor().hasSelection():
             self.status.setText("No more occurrences.")
         return bool(done)
 
     def replace_all(self) -> int:
         count = self._run(lambda: self.editor.replace_all(self.find_edit.text(), self.replace_edit.text(),
-                                                          self.options()))
+                                                          options=self.options()))
         if count is not None:
             self.status.setText(f"{count} replacement(s).")
         return count or 0
@@ -223,7 +223,7 @@ class FindInFilesDialog(QDialog):
         layout.addWidget(self.results, 1)
         layout.addWidget(self.status)
 
-    def open_for(self, text: str = "") -> None:
+    def open_for(self, *, text: str = "") -> None:
         if text and "\u2029" not in text:
             self.find_edit.setText(text)
         self.show()
@@ -255,6 +255,6 @@ class FindInFilesDialog(QDialog):
         self.status.setText(f"{len(hits)} hit(s) in {files} file(s). Double-click a hit to open it.")
         return hits
 
-    def _activated(self, item: QTreeWidgetItem, _column: int = 0) -> None:
+    def _activated(self, item: QTreeWidgetItem) -> None:
         path, line, col = item.data(0, Qt.ItemDataRole.UserRole)
         self.locationActivated.emit(path, line, col)

@@ -71,7 +71,7 @@ class MacroSlots:
         name = normalize_shortcut(shortcut)
         return next((i for i, s in enumerate(self._slots) if s is not None and s[0] == name), None)
 
-    def assign(self, shortcut: str, keys: list[KeyStroke], slot: int | None = None) -> int:
+    def assign(self, shortcut: str, keys: list[KeyStroke], *, slot: int | None = None) -> int:
         """Store `keys` under `shortcut` in `slot` (0-based; default: the slot that already has this shortcut,
         else the first free one). Returns the slot; ValueError when no slot is free."""
         name = normalize_shortcut(shortcut)
@@ -117,7 +117,7 @@ class MacroSlots:
         slots = cls()
         for i, entry in enumerate(json.loads(text)[:MAX_MACROS]):
             if entry:
-                slots.assign(entry[0], [KeyStroke(int(k), int(m), str(t)) for k, m, t in entry[1]], i)
+                slots.assign(entry[0], [KeyStroke(int(k), int(m), str(t)) for k, m, t in entry[1]], slot=i)
         return slots
 
 
@@ -172,7 +172,7 @@ class SaveMacroDialog(QDialog):
 
     def accept(self) -> None:
         if self.shortcut():
-            self.macro_slots.assign(self.shortcut(), self.keys, max(0, self.slot_list.currentRow()))
+            self.macro_slots.assign(self.shortcut(), self.keys, slot=max(0, self.slot_list.currentRow()))
         super().accept()
 
 
@@ -193,7 +193,7 @@ class MacroMixin:
         self._recording = []
         self.macroRecordingChanged.emit(True)
 
-    def stop_recording(self, shortcut: str | None = None) -> list[KeyStroke]:
+    def stop_recording(self, *, shortcut: str | None = None) -> list[KeyStroke]:
         """End recording; the macro becomes the last macro and, with `shortcut`, is saved under it."""
         if self._recording is None:
             return []
@@ -214,7 +214,7 @@ class MacroMixin:
             self.macro_dialog = SaveMacroDialog(keys, self.macros, self.key_bindings(), self)
             self.macro_dialog.show()
 
-    def play_macro(self, shortcut: str | None = None) -> bool:
+    def play_macro(self, *, shortcut: str | None = None) -> bool:
         """Replay the macro saved under `shortcut` (default: the last recorded one); False if there is none."""
         keys = self._last_macro if shortcut is None else self.macros.get(shortcut)
         if not keys or self._playing:
@@ -239,7 +239,7 @@ class MacroMixin:
         chord = f"{self._pending_chord}, {combo}" if self._pending_chord else combo
         self._pending_chord = None
         if chord in self.macros.shortcuts():
-            self.play_macro(chord)
+            self.play_macro(shortcut=chord)
             return True
         if any(s.startswith(chord + ", ") for s in self.macros.shortcuts()):
             self._pending_chord = chord

@@ -31,7 +31,7 @@ class SearchMixin:
         self.setTextCursor(cursor)
         self.ensureCursorVisible()
 
-    def find(self, text: str | None = None, options: SearchOptions | None = None) -> bool:
+    def find(self, *, text: str | None = None, options: SearchOptions | None = None) -> bool:
         """Select the next hit of `text` (default: the last search) from the caret; PatternError if invalid.
 
         Forward searches start at the end of the selection, backward ones before its start.
@@ -76,7 +76,7 @@ class SearchMixin:
         cursor.select(QTextCursor.SelectionType.WordUnderCursor)
         return cursor.selectedText()
 
-    def find_word(self, backward: bool = False) -> bool:
+    def find_word(self, *, backward: bool = False) -> bool:
         """Ctrl-F3 / Ctrl-Shift-F3: next/previous occurrence of the word under the caret [DG L2150-2151]."""
         word = self.word_under_caret().strip()
         if not word:
@@ -85,7 +85,7 @@ class SearchMixin:
             cursor = self.textCursor()
             cursor.select(QTextCursor.SelectionType.WordUnderCursor)
             self.setTextCursor(cursor)
-        return self.find(word, SearchOptions("plain", False, True, backward, True))
+        return self.find(text=word, options=SearchOptions("plain", False, True, backward, True))
 
     def _match_at_selection(self, rx: re.Pattern[str], doc_text: str, umap: Utf16Map) -> re.Match[str] | None:
         cursor = self.textCursor()
@@ -95,7 +95,7 @@ class SearchMixin:
         m = rx.match(doc_text, start)
         return m if m is not None and m.end() == end else None
 
-    def replace(self, text: str, replacement: str, options: SearchOptions | None = None) -> bool:
+    def replace(self, text: str, replacement: str, *, options: SearchOptions | None = None) -> bool:
         """Replace: if the selection is a hit, replace it; then select the next hit. True if one was replaced."""
         self.search_text, self.search_options = text, options or self.search_options
         rx = search.compile_search(text, self.search_options)
@@ -109,7 +109,7 @@ class SearchMixin:
         self.find()
         return replaced
 
-    def replace_all(self, text: str, replacement: str, options: SearchOptions | None = None,
+    def replace_all(self, text: str, replacement: str, *, options: SearchOptions | None = None,
                     in_selection: bool = False) -> int:
         """Replace every hit (in the whole text, or in the selection) as ONE undo step; the count."""
         opts = options or self.search_options
@@ -132,7 +132,7 @@ class SearchMixin:
         edit.endEditBlock()
         return len(edits)
 
-    def mark_all(self, text: str, options: SearchOptions | None = None) -> int:
+    def mark_all(self, text: str, *, options: SearchOptions | None = None) -> int:
         """Mark All: a bookmark on every line with a hit; F2 then walks through them [DG L2306]."""
         opts = options or self.search_options
         self.search_text, self.search_options = text, opts
@@ -143,7 +143,7 @@ class SearchMixin:
         self.set_bookmarks(sorted(set(self.bookmarks()) | set(lines)))
         return len(lines)
 
-    def show_find_dialog(self, replace: bool = False) -> FindReplaceDialog:
+    def show_find_dialog(self, *, replace: bool = False) -> FindReplaceDialog:
         """Ctrl-F / Alt-F3 (Find), Ctrl-R (Replace): the non-modal FindReplaceDialog, with the selection."""
         if self._find_dialog is None:
             self._find_dialog = FindReplaceDialog(self)
@@ -159,12 +159,12 @@ class SearchMixin:
             root = self.file_path.parent if self.file_path else Path.cwd()
             self._files_dialog = FindInFilesDialog(root, self)
             self._files_dialog.locationActivated.connect(self._open_location)
-        self._files_dialog.open_for(self.word_under_caret())
+        self._files_dialog.open_for(text=self.word_under_caret())
         return self._files_dialog
 
     def _open_location(self, path: str, line: int, col: int) -> None:
         if self.file_path is not None and Path(path).resolve() == self.file_path.resolve():
-            self.goto_line(line, col)
+            self.goto_line(line, col=col)
             self.setFocus()
         else:
             self.openLocationRequested.emit(path, line, col)

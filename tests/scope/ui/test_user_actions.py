@@ -1,0 +1,114 @@
+"""The oscilloscope as a user drives it from the IDE: toolbar buttons, menu entries and keys, with the modal
+dialogs answered (issue 16, defects 2a). Before the fix Add curve raised "'bool' object has no attribute
+'kind'" (triggered(bool) arrived as the optional dialog) and Save wrote every curve's "data": null."""
+
+import json
+
+from PySide6.QtCore import Qt
+from PySide6.QtWidgets import QToolButton
+
+from motiontool.scope.ui import ScopeWindow
+from motiontool.scope.ui.dialogs import AddCurveDialog
+from tests.modal import answering, file_reply, ok_reply
+
+MOVING = "VEL 50\nACC 100\nDEC 100\nmain:\nPOSA 50000\nPOSA 0\nGOTO main\n"
+GROUP = "Test Group (Free Run)"
+
+
+def click(qtbot, window, action):
+    button = next(b for b in window.findChildren(QToolButton) if b.defaultAction() is action)
+    qtbot.mouseClick(button, Qt.MouseButton.LeftButton)
+
+
+def activate(qtbot, widget):
+    """Bring the window to the front (a user clicks into it) so its shortcuts reach it."""
+    widget.activateWindow()
+    qtbot.waitUntil(widget.isActiveWindow, timeout=2000)
+
+
+def add_curve_reply(signal):
+    def fill(dialog):
+        dialog.signal.setText(signal)
+        dialog.method.setCurrentText(GROUP)
+    return ok_reply(fill, AddCurveDialog)
+
+
+def open_scope_moving(window, qtbot):
+    """F5 on a program that moves the axis back and forth, then Tools → Oscilloscope."""
+    editor = window.new_file()
+    editor.setPlainText(MOVING)
+    qtbot.keyClick(editor, Qt.Key.Key_F5)
+    qtbot.waitUntil(lambda: window.bridge.last_status is not None
+                    and window.bridge.last_status.program_state == "running", timeout=5000)
+    window.actions_by_text["Oscilloscope"].trigger()
+    scope = window._scopes[-1]
+    qtbot.waitExposed(scope)
+    return scope
+
+
+def record(scope: ScopeWindow, qtbot, ms: int = 1500) -> None:
+    """Start with the toolbar, let the program move, Stop with Shift+F9."""
+    click(qtbot, scope, scope.start_action)
+    qtbot.waitUntil(lambda: all(len(c.buffer) > 50 for c in scope.scope.curves), timeout=10000)
+    qtbot.wait(ms // 3)
+    activate(qtbot, scope)
+    qtbot.keyClick(scope, Qt.Key.Key_F9, Qt.KeyboardModifier.ShiftModifier)
+    assert not scope.running
+
+
+def test_add_curve_button_then_free_run_records_apos_and_cpos_while_a_program_moves(window, qtbot):
+    """DG 5424-5450, ide-spec S20: Add curve opens the dialog; the curves land in the Free Run group and record."""
+    scope = open_scope_moving(window, qtbot)
+    for signal in ("APOS", "CPOS"):
+        with answering(qtbot, add_curve_reply(signal)):
+            click(qtbot, scope, scope.add_action)
+    assert [(c.name, c.source.group) for c in scope.scope.curves] == [("1: APOS", GROUP), ("1: CPOS", GROUP)]
+    record(scope, qtbot)
+    for curve in scope.scope.curves:
+        t, y = curve.raw()
+        assert t.size > 50 and y.max() - y.min() > 100, curve.name  # the axis moved while recording
+    scope.close()
+
+
+def test_save_by_toolbar_menu_and_ctrl_s_writes_the_data_and_it_reopens(window, qtbot, tmp_path):
+    """DG 5349-5355, ide-spec S20 step 6: the saved .zbo holds the samples; File → Open shows them again."""
+    scope = open_scope_moving(window, qtbot)
+    for signal in ("APOS", "CPOS"):
+        with answering(qtbot, add_curve_reply(signal)):
+            click(qtbot, scope, scope.add_action)
+    record(scope, qtbot)
+    samples = {c.name: c.raw()[0].size for c in scope.scope.curves}
+    file_menu = next(a.menu() for a in scope.menuBar().actions() if a.text() == "&File")
+    save_entry = next(a for a in file_menu.actions() if a.text() == "Save")
+    ways = {"toolbar": lambda: click(qtbot, scope, scope.save_action),
+            "menu": save_entry.trigger,
+            "ctrl_s": lambda: qtbot.keyClick(scope, Qt.Key.Key_S, Qt.KeyboardModifier.ControlModifier)}
+    for way, fire in ways.items():
+        path = tmp_path / f"{way}.zbo"
+        activate(qtbot, scope)
+        with answering(qtbot, file_reply(path)):
+            fire()
+        curves = json.loads(path.read_text())["curves"]
+        assert all(c["data"] is not None for c in curves), way
+        with answering(qtbot, file_reply(path)):
+            click(qtbot, scope, scope.open_action)
+        reopened = scope._opened
+        assert {c.name: c.raw()[0].size for c in reopened.scope.curves} == samples, way
+        assert reopened.link is None   # a file opens unbound (DG 5277-5285)
+        reopened.close()
+    scope.close()
+
+
+def test_save_without_data_still_writes_a_template(window, qtbot, tmp_path):
+    """File → Save without Data (DG 5349-5355) is the one way to write "data": null."""
+    scope = open_scope_moving(window, qtbot)
+    with answering(qtbot, add_curve_reply("APOS")):
+        click(qtbot, scope, scope.add_action)
+    record(scope, qtbot, ms=300)
+    file_menu = next(a.menu() for a in scope.menuBar().actions() if a.text() == "&File")
+    entry = next(a for a in file_menu.actions() if a.text() == "Save without Data")
+    path = tmp_path / "template.zbo"
+    with answering(qtbot, file_reply(path)):
+        entry.trigger()
+    assert [c["data"] for c in json.loads(path.read_text())["curves"]] == [None]
+    scope.close()
