@@ -65,7 +65,8 @@ def edit_cell(qtbot, editor, row: int, col: int, text: str) -> None:
     line.selectAll()
     qtbot.keyClicks(line, text)
     qtbot.keyClick(line, Qt.Key.Key_Return)
-    qtbot.wait(100)  # the edit is applied queued
+    qtbot.waitUntil(lambda: not line.isVisible(), timeout=5000)
+    qtbot.wait(100)  # the edit is applied queued, after the cell editor has closed
 
 
 def field(qtbot, widget, text: str) -> None:
