@@ -1,0 +1,383 @@
+"""The APC tick core: one POS sample of sources → POS0 → kernel → POS1 → output channel (seed 004 §3.9
+L645-651, §4.2-4.3 L777-996, Fig 3-7 text).
+
+Per sample, at time t_k:
+
+1. the plant has run up to t_k with the output channel's values (one POS period plus 250 µs late, L2112-2120);
+2. the sources are read (drive encoder, slot encoders, user-program words); freeze and marker events since
+   t_(k−1) are latched at their interpolated positions; a reference freeze may select CAM or digital lock;
+3. POS0 runs (a DPL VM's task, or any callable);
+4. the sources are refreshed again, so POS0 edits act in this sample (V01.03.03, L7219-7222);
+5. the kernel runs in its run mode: 0 off (not called), 1 disabled (counters and following error only), 2
+   enabled — a change to 2 spends one sample disabled first, [4] reports the enable at the end of the kernel
+   (L928-930); APCReset costs one disabled sample and pulses [5] (L2432-2444);
+6. POS1 runs; the output channel latches.
+
+Resets (Table 4-2, L975-996): the reference integrator to 0 (relative) or its source (absolute) plus [6], the
+feedback integrator to 0 or its source plus [2]; the profile generator output from the feedback integrator and
+its input likewise, except in digital lock where the input is the reference integrator.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from motiontool.apc.cam import Cam, CamError
+from motiontool.apc.diglock import DigitalLock
+from motiontool.apc.driveparams import DriveParameters
+from motiontool.apc.intmath import Ratio, wrap32
+from motiontool.apc.loop import OutputChannel, PositionLoop
+from motiontool.apc.plant import Plant, PlantConfig, SlotEncoder
+from motiontool.apc.profile import ProfileGenerator
+from motiontool.apc.sources import UNCONFIGURED, USER_PROGRAM, Source
+from motiontool.apc.units import POS_RATE_US, UserUnits, rpm_to_speed
+
+STOP, POSITION, SPEED, CAM, DIG_LOCK = range(5)
+PROFILED_STOP, INSTANT_STOP, LINEAR_STOP, SPEED_STOP = range(4)
+APC_VERSION = 10404        # [15]: the firmware generation the simulation follows (V01.04.04, user units)
+
+
+class ApcError(Exception):
+    """An APC runtime error (90.49 code); the kernel selects Stop and, with #81.38 = 1, trips Tr81."""
+
+    def __init__(self, code: int, text: str):
+        super().__init__(text)
+        self.code = code
+
+
+class KernelCore:
+    """State and tick of one SM-Applications APC with its drive (see ApcDrive for the public API)."""
+
+    def __init__(self, plant: PlantConfig | None = None, *, pos_rate: int | None = None):
+        self.params = DriveParameters()
+        if pos_rate is not None:
+            self.params.values[(81, 12)] = pos_rate
+        self.plant = Plant(plant)
+        self.slots: dict[int, SlotEncoder | None] = {1: None, 2: None, 3: None}
+        self.ref = Source("reference")
+        self.fb = Source("feedback")
+        self.pg = ProfileGenerator()
+        self.opg = ProfileGenerator()
+        self.cam = Cam()
+        self.dl = DigitalLock()
+        self.loop = PositionLoop()
+        self.channel = OutputChannel()
+        self.turns_bits = 16                 # [14]
+        self.user_units: UserUnits | None = None
+        self.time_ns = 0
+        self.samples = 0
+        self.pos0: Callable[[], object] | None = None     # user tasks run inside the tick
+        self.pos1: Callable[[], object] | None = None
+        self.task: str | None = None         # which DPL task is calling (set by a VM; None = outside)
+        self.listeners: list[Callable[[str, dict], None]] = []   # ("error" | "trip", details)
+        # control and access
+        self.run_mode = 0                    # [0] is "mode 2 requested"
+        self.enabled = 0                     # [4]
+        self.reset_status = 0                # [5]
+        self.absolute_mode = False           # [1]
+        self.position_reset_offset = 0       # [2]
+        self.reset_sources_on_disable = True  # [3]
+        self.ref_reset_offset = 0            # [6]
+        self._reset_request = False
+        self._was_enabled = False
+        # references
+        self.reference = STOP                # [100]
+        self.action_on_freeze = 0            # [101]
+        self.offset_select = 0               # [102]
+        self.stop_mode = PROFILED_STOP       # [90]
+        self.position_setpoint = 0           # [170] counts
+        self.setpoint_rem = 0                # [171] internal remainder, [172] the user's
+        self.setpoint_user_rem = 0
+        self.speed_setpoint = 0              # [94]
+        self.position_offset = 0             # [173]
+        self.offset_rem = 0                  # [174] / [175]
+        self.offset_user_rem = 0
+        self.speed_offset = 0                # [95]
+        self.stop_target = 0                 # [176] while Stop is active
+        self._active = None                  # the reference the kernel ran last sample
+        self._stop_valid = False
+        self._freeze_since: int | None = None
+        self._ref_last = 0                   # [28] when the kernel last ran
+        self._after_reset = False
+        self._bypass_rem = 0                 # speed reference with the generator bypassed: remainder
+        # errors and the drive
+        self.error_id = 0                    # 90.49
+        self.trip = ""                       # "" | "Tr81" | "Tr44"
+        self.drive_enabled = True            # the drive's enable and run command (→ #1.11)
+        self._pipe = (0, 0, 0)               # drive speed demands of samples k-3, k-2, k-1 (APC units)
+        self._install_virtual_parameters()
+        self.reinit()
+
+    # --- configuration ----------------------------------------------------------------------------------------
+    def reinit(self) -> None:
+        """REINIT: take the POS rate from #81.12 (L4678-4723)."""
+        code = self.params.values.get((81, 12), 3)
+        if code not in POS_RATE_US:
+            raise ValueError(f"#81.12 = {code}: the POS task must run (1 = 0.25 ms … 6 = 8 ms)")
+        self.period_us = POS_RATE_US[code]
+        self.quarters = self.period_us // 250
+        self.period_ns = self.period_us * 1000
+
+    @property
+    def reference_on(self) -> int:
+        """#1.11: the drive is healthy, enabled and running (L5078-5080)."""
+        return int(self.drive_enabled and not self.trip)
+
+    def _install_virtual_parameters(self) -> None:
+        p = self.params
+        p.readers[(1, 11)] = lambda: self.reference_on
+        p.readers[(90, 1)] = lambda: self.fb.position
+        p.readers[(90, 3)] = lambda: self.ref.position
+        p.readers[(90, 18)] = lambda: self.fb.freeze_flag
+        p.readers[(90, 19)] = lambda: self.fb.freeze_position
+        p.readers[(90, 28)] = lambda: self.ref.freeze_flag
+        p.readers[(90, 29)] = lambda: self.ref.freeze_position
+        p.readers[(90, 25)] = lambda: self.fb.marker_position
+        p.readers[(90, 35)] = lambda: self.ref.marker_position
+        p.readers[(90, 41)] = lambda: self.ref.marker_flag
+        p.readers[(90, 42)] = lambda: self.fb.marker_flag
+        p.readers[(90, 49)] = lambda: self.error_id
+        for key, source, attr in (((90, 43), self.ref, "selector"), ((90, 44), self.fb, "selector"),
+                                  ((90, 45), self.ref, "marker_enabled"), ((90, 46), self.fb, "marker_enabled"),
+                                  ((90, 47), self.ref, "freeze_enabled"), ((90, 48), self.fb, "freeze_enabled")):
+            p.readers[key] = lambda s=source, a=attr: int(getattr(s, a))
+            p.writers[key] = lambda v, s=source, a=attr: setattr(s, a, v if a == "selector" else bool(v))
+
+    # --- events ------------------------------------------------------------------------------------------------
+    def _emit(self, kind: str, **details) -> None:
+        for listener in list(self.listeners):
+            listener(kind, details)
+
+    def apc_error(self, code: int, text: str) -> None:
+        """An APC runtime error: 90.49 = code, Stop is selected, Tr81 when #81.38 = 1 (L2307-2331)."""
+        self.error_id = code
+        self.reference = STOP
+        self._emit("error", code=code, text=text, time_us=self.time_ns / 1000)
+        if self.params.values.get((81, 38), 0) == 1:
+            self.trip_drive("Tr81", text)
+
+    def trip_drive(self, trip: str, text: str = "") -> None:
+        if not self.trip:
+            self.trip = trip
+            self._emit("trip", trip=trip, text=text, time_us=self.time_ns / 1000)
+
+    def schedule(self, side: str, kind: str, time_us: float) -> None:
+        """A freeze or marker event on the reference or feedback side at `time_us` (between samples)."""
+        source = {"reference": self.ref, "feedback": self.fb}[side]
+        if kind not in ("freeze", "marker"):
+            raise ValueError(f"event {kind!r}: freeze or marker")
+        when = round(time_us * 1000)
+        if when <= self.time_ns - self.period_ns:
+            raise ValueError(f"{kind} at {time_us} µs is before the present sample ({self.time_ns / 1000} µs)")
+        source.events.append((when, kind))
+
+    # --- the tick ----------------------------------------------------------------------------------------------
+    def _source_word(self, source: Source) -> int:
+        sel = source.selector
+        if sel == 0:
+            return self.plant.encoder_word()
+        if sel == USER_PROGRAM:
+            return source.user_word
+        if sel == UNCONFIGURED:
+            return 0
+        slot = self.slots.get(sel)
+        return slot.word if slot is not None else 0
+
+    def tick(self) -> None:
+        """One POS sample (module docstring)."""
+        q = self.quarters
+        t_prev = self.time_ns
+        self.time_ns = t_now = t_prev + self.period_ns
+        self.samples += 1
+        before = self.plant.position
+        old, new, _ = self._pipe
+        self.plant.step(old, new, q, self.reference_on == 1)
+        for slot in self.slots.values():
+            if slot is not None:
+                slot.advance(q)
+        for frac in self.plant.marker_crossings(before, self.plant.position):
+            self.fb.events.append((t_prev + round(frac * self.period_ns), "marker"))
+        counting = self.run_mode != 0
+        tb = self.turns_bits
+        ref, fb = self.ref, self.fb
+        if counting:
+            ref.refresh(self._source_word(ref), tb, True)
+            fb.refresh(self._source_word(fb), tb, True)
+            for kind, main in ref.capture_events(t_prev, t_now, tb):
+                if kind == "freeze" and self.action_on_freeze and self.run_mode == 2:
+                    self.reference = DIG_LOCK if self.action_on_freeze == 1 else CAM
+                    self._freeze_since = main
+                    self._active = None
+            fb.capture_events(t_prev, t_now, tb)
+        if self.pos0 is not None:
+            self.task = "pos0"
+            self.pos0()
+        if counting:
+            ref.refresh(self._source_word(ref), tb, True)
+            fb.refresh(self._source_word(fb), tb, True)
+            self._kernel()
+            ref.end_sample(tb, q)
+            fb.end_sample(tb, q)
+        if self.pos1 is not None:
+            self.task = "pos1"
+            self.pos1()
+        self.task = None
+        self._latch_output()
+
+    def _latch_output(self) -> None:
+        speed, target, value = self.channel.latch(self.loop.output if self.enabled else 0)
+        if target is not None:
+            self.params.values[target] = value
+        if speed is None:   # no speed shortcut: the drive runs on its selected speed parameter (rpm×10)
+            key = (3, 22) if self.params.values.get((3, 23), 0) == 1 else (1, 21)
+            speed = rpm_to_speed(self.params.values.get(key, 0)) // 10
+        limit = rpm_to_speed(self.params.values.get((1, 6), 3000))
+        if abs(speed) > limit:
+            if self.params.values.get((81, 17), 0) == 1:
+                self.trip_drive("Tr44", "output channel over range (#1.06)")
+            speed = limit if speed > 0 else -limit
+        _, b, c = self._pipe
+        self._pipe = (b, c, speed)
+
+    # --- the kernel ----------------------------------------------------------------------------------------------
+    def _kernel(self) -> None:
+        mode = self.run_mode
+        if mode == 1 or not self._was_enabled or self._reset_request:
+            resetting = self._reset_request and self._was_enabled
+            self._disabled_sample(reset=self.reset_sources_on_disable)
+            self._was_enabled = mode == 2
+            self._reset_request = False
+            if resetting:
+                # APCReset: one disabled sample inside run mode 2 ([4] stays 1, **inferred**); [5] falls at the
+                # end of the next kernel run; the references restart (a single-shot CAM, L3664), and a
+                # digital lock aims at the reset reference integrator (Table 4-2: rigid lock then shows the
+                # reset offset as following error, L2602-2606)
+                self.enabled = 1
+                self.reset_status = 1
+                self._after_reset = True
+            return
+        self._enabled_sample()
+        self.enabled = 1
+        self.reset_status = 0
+
+    def _reset_values(self) -> tuple[int, int]:
+        """Integrator reset values (Table 4-2): 0 or the source, plus the offsets."""
+        if self.absolute_mode:
+            return (wrap32(self.ref.input + self.ref_reset_offset), wrap32(self.fb.input + self.position_reset_offset))
+        return wrap32(self.ref_reset_offset), wrap32(self.position_reset_offset)
+
+    def _disabled_sample(self, reset: bool) -> None:
+        self.enabled = 0
+        if reset:
+            self.ref.integrated, self.fb.integrated = self._reset_values()
+        self.pg.reset(self.fb.integrated)
+        self.opg.reset(0)
+        self.loop.idle(self.pg.position, self.fb.integrated)
+        self._ref_last = self.ref.integrated
+        self._active = None
+
+    def _enter(self, reference: int) -> None:
+        """The reference changed (or restarts): bumpless set-up of the new one."""
+        pg = self.pg
+        if reference == STOP:
+            self._set_offsets(0)
+            self.stop_target = pg.stop_position(linear=self.stop_mode == LINEAR_STOP)
+            self._stop_valid = True
+        elif reference == CAM:
+            try:
+                self.cam.engage()
+            except CamError as exc:
+                self.apc_error(exc.code, str(exc))
+                return self._enter(STOP)
+        elif reference == DIG_LOCK:
+            if self._after_reset and self.dl.rigid:
+                self.dl.engage(0)
+                self.dl.rebase(self.dl.ratio.step(self.ref.integrated))
+            else:
+                self.dl.engage(pg.position)
+        self._after_reset = False
+        self._active = reference
+
+    def _set_offsets(self, select: int) -> None:
+        if select == 0 and (self.opg.position or self.opg.speed):
+            self.pg.take_over(self.opg)
+        self.offset_select = select
+
+    def _enabled_sample(self) -> None:
+        pg, q = self.pg, self.quarters
+        since = None
+        if self._active != self.reference:
+            since = self._freeze_since
+            self._freeze_since = None
+            self._enter(self.reference)
+        ref_now = self.ref.integrated
+        d_ref = wrap32(ref_now - self._ref_last) if since is None else wrap32(ref_now - since)
+        self._ref_last = ref_now
+        active = self._active
+        self.cam.wrapped = 0
+        if active == CAM:
+            try:
+                pg.bypass(wrap32(pg.position + self.cam.step(d_ref)), q)
+            except CamError as exc:
+                self.apc_error(exc.code, str(exc))
+            else:
+                if self.cam.complete and self.cam.rearm:     # single-shot freeze re-arm (L1605-1622)
+                    self.reference = STOP
+                    self.ref.reset_freeze()
+        elif active == DIG_LOCK:
+            self.dl.step(d_ref, pg, q)
+        elif pg.disabled or (active == STOP and self.stop_mode == INSTANT_STOP):
+            if active == POSITION:
+                pg.bypass(self.position_setpoint, q)
+            elif active == SPEED:   # no ramps: the speed set point integrated exactly
+                step, self._bypass_rem = divmod(self.speed_setpoint * q + self._bypass_rem, 1 << self.turns_bits)
+                pg.bypass(wrap32(pg.position + step), q)
+            else:
+                pg.bypass(pg.position, q)
+        elif active == POSITION:
+            pg.to_position(self.position_setpoint, q)
+        elif active == SPEED:
+            pg.to_speed(self.speed_setpoint, q)
+        elif self.stop_mode == SPEED_STOP:
+            pg.to_speed(0, q)
+        else:
+            pg.to_position(self.stop_target, q, linear=self.stop_mode == LINEAR_STOP)
+        self._run_offsets(q)
+        scale = 1 << self.turns_bits
+        total = wrap32(pg.position + self.opg.position)
+        speed = round((pg.speed + self.opg.speed) * scale)
+        self.loop.run(total, speed, self.fb.integrated, self.turns_bits)
+
+    def _run_offsets(self, q: int) -> None:
+        opg = self.opg
+        if self.reference == STOP and self.offset_select:
+            self._set_offsets(0)
+        select = self.offset_select
+        if select == 0:
+            if opg.position or opg.speed:
+                opg.reset(0)
+            return
+        if opg.disabled:
+            if select == 1:
+                opg.bypass(self.position_offset, q)
+            else:
+                opg.bypass(wrap32(opg.position + self.speed_offset * q // (1 << self.turns_bits)), q)
+        elif select == 1:
+            opg.to_position(self.position_offset, q)
+        else:
+            opg.to_speed(self.speed_offset, q)
+
+    # --- helpers for the commands --------------------------------------------------------------------------------
+    def stop_position(self) -> int:
+        """[91]: the stop target while Stop runs, else where a stop selected now would end (L3367-3376)."""
+        if self._active == STOP and self._stop_valid and self.stop_mode != INSTANT_STOP:
+            return self.stop_target
+        if self.stop_mode == INSTANT_STOP:
+            return self.pg.position
+        return self.pg.stop_position(linear=self.stop_mode == LINEAR_STOP)
+
+    def new_ratio(self, ratio: Ratio, numerator: int | None = None, denominator: int | None = None) -> None:
+        if numerator is not None:
+            ratio.numerator = numerator
+        if denominator is not None:
+            ratio.denominator = denominator

@@ -1,0 +1,79 @@
+"""CTSync: several drives on one RS485 line running their POS tasks in lockstep (seed 004 §4.10 L2058-2101,
+§5.2.3 L3241-3288, §7.5-7.6 L6056-6541).
+
+One master (#81.06 = 25) broadcasts two int32 references and an 8-bit auxiliary value each sample with
+CTSyncSetMasterReferences; every node, the master included, reads the last data received with
+CTSyncGetSlaveReferences in POS0. The broadcast of sample k arrives for sample k+1, so all nodes apply the
+same one-sample-old data at the same instant (L2080-2094; §7.5 "the master also follows its own data").
+Status: 1 ok, 0 nothing or too short, −1 too long, −2 checksum error (L3276-3281); menu 91 counts valid,
+invalid and missing messages (91.17-91.19). All nodes must run the same POS rate (L2071).
+
+Faults can be injected per sample to check programs against a bad line (**inferred** diagnostics model:
+a faulty message leaves the previous data in place).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+from motiontool.apc.drive import ApcDrive
+
+MAX_NODES_2WIRE, MAX_NODES_4WIRE = 8, 16     # L2072-2075
+FAULT_STATUS = {"short": 0, "long": -1, "checksum": -2}
+
+
+class CTSyncLine:
+    """Drives stepped together, sample by sample, with the master's data delivered one sample late."""
+
+    def __init__(self, drives: Iterable[ApcDrive], *, four_wire: bool = False):
+        self.drives = list(drives)
+        if not self.drives:
+            raise ValueError("a CTSync line needs at least one drive")
+        limit = MAX_NODES_4WIRE if four_wire else MAX_NODES_2WIRE
+        if len(self.drives) > limit:
+            raise ValueError(f"{len(self.drives)} nodes: CTSync allows {limit} on a "
+                             f"{'4' if four_wire else '2'}-wire line without repeaters")
+        periods = {d.period_us for d in self.drives}
+        if len(periods) > 1:
+            raise ValueError(f"every CTSync node must run the same POS rate (#81.12); found {sorted(periods)} µs")
+        self.faults: dict[int, str] = {}      # sample number → "short" | "long" | "checksum" | "missing"
+        self.samples = 0
+        self._in_flight: tuple[int, int, int] | None = None
+        for d in self.drives:
+            for key in ((91, 17), (91, 18), (91, 19)):
+                d.params.values.setdefault(key, 0)
+
+    def inject(self, sample: int, fault: str) -> None:
+        """Spoil the message that arrives for `sample` (1-based count of line samples)."""
+        if fault not in (*FAULT_STATUS, "missing"):
+            raise ValueError(f"fault {fault!r}: short, long, checksum or missing")
+        self.faults[sample] = fault
+
+    def masters(self) -> list[ApcDrive]:
+        return [d for d in self.drives if d.params.values.get((81, 6)) == 25]
+
+    def tick(self) -> None:
+        """One sample on every node: deliver last sample's broadcast, run all nodes, collect the new one."""
+        self.samples += 1
+        message, fault = self._in_flight, self.faults.pop(self.samples, None)
+        for d in self.drives:
+            counters = d.params.values
+            if message is None or fault == "missing":
+                d.ctsync_status = 0
+                if message is not None or self.samples > 1 and self.masters():
+                    counters[(91, 19)] += 1
+            elif fault:
+                d.ctsync_status = FAULT_STATUS[fault]
+                counters[(91, 18)] += 1
+            else:
+                d.ctsync_in, d.ctsync_status = message, 1
+                counters[(91, 17)] += 1
+        for d in self.drives:
+            d.ctsync_out = None
+            d.tick()
+        sent = [d.ctsync_out for d in self.drives if d.ctsync_out is not None]
+        self._in_flight = sent[-1] if sent else None
+
+    def run_ms(self, ms: float) -> None:
+        for _ in range(round(ms * 1000 / self.drives[0].period_us)):
+            self.tick()
