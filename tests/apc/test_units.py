@@ -64,7 +64,7 @@ def test_user_units_remainder_identity():
     assert u.conv_n == 65536 and u.conv_d == 314
     uu, rem = u.to_user(100000)
     assert uu == round(100000 * 314 / 65536)
-    assert 100000 * 314 == uu * 65536 + rem
+    assert uu * 65536 + rem == 100000 * 314
     assert u.to_counts(uu, rem) == (100000, 0)
 
 
