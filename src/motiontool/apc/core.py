@@ -4,10 +4,11 @@ L645-651, §4.2-4.3 L777-996, Fig 3-7 text).
 Per sample, at time t_k:
 
 1. the plant has run up to t_k with the output channel's values (one POS period plus 250 µs late, L2112-2120);
-2. the sources are read (drive encoder, slot encoders, user-program words); freeze and marker events since
-   t_(k−1) are latched at their interpolated positions; a reference freeze may select CAM or digital lock;
+2. the sources are read (drive encoder, slot encoders, user-program words);
 3. POS0 runs (a DPL VM's task, or any callable);
-4. the sources are refreshed again, so POS0 edits act in this sample (V01.03.03, L7219-7222);
+4. the sources are refreshed again, so POS0 edits act in this sample (V01.03.03, L7219-7222); freeze and
+   marker events since t_(k−1) are latched at their interpolated positions; a reference freeze may select CAM
+   or digital lock;
 5. the kernel runs in its run mode: 0 off (not called), 1 disabled (counters and following error only), 2
    enabled — a change to 2 spends one sample disabled first, [4] reports the enable at the end of the kernel
    (L928-930); APCReset costs one disabled sample and pulses [5] (L2432-2444);
@@ -203,18 +204,22 @@ class KernelCore:
         if counting:
             ref.refresh(self._source_word(ref), tb, True)
             fb.refresh(self._source_word(fb), tb, True)
-            for kind, main in ref.capture_events(t_prev, t_now, tb):
-                if kind == "freeze" and self.action_on_freeze and self.run_mode == 2:
-                    self.reference = DIG_LOCK if self.action_on_freeze == 1 else CAM
-                    self._freeze_since = main
-                    self._active = None
-            fb.capture_events(t_prev, t_now, tb)
         if self.pos0 is not None:
             self.task = "pos0"
             self.pos0()
         if counting:
             ref.refresh(self._source_word(ref), tb, True)
             fb.refresh(self._source_word(fb), tb, True)
+            # events of (t_(k-1), t_k] are latched now that this sample's positions are known, also those a
+            # user-program source received in POS0 (decision A13)
+            if ref.events:
+                for kind, main in ref.capture_events(t_prev, t_now, tb):
+                    if kind == "freeze" and self.action_on_freeze and self.run_mode == 2:
+                        self.reference = DIG_LOCK if self.action_on_freeze == 1 else CAM
+                        self._freeze_since = main
+                        self._active = None
+            if fb.events:
+                fb.capture_events(t_prev, t_now, tb)
             self._kernel()
             ref.end_sample(tb, q)
             fb.end_sample(tb, q)

@@ -177,7 +177,8 @@ class ProfileGenerator:
             bits |= DECEL
         if not a and v and (moving or self.mode == "cruise"):
             bits |= CONST_POS if v > 0 else CONST_NEG
-        if (self.prev_speed > 0 >= self.speed) or (self.prev_speed < 0 <= self.speed):
+        before = round(self.prev_speed * scale)
+        if (before > 0 > v) or (before < 0 < v):
             bits |= CROSS_0
         if moving:
             bits |= PROFILING
