@@ -197,4 +197,4 @@ def test_speed_reference_runs_at_its_exact_speed():
     d.run_ms(100)
     start = d.read(117)
     d.run_ms(60_000)
-    assert d.read(117) - start == speed * 4 * 60_000 // 65536 or abs(d.read(117) - start - speed * 4 * 60_000 / 65536) < 1
+    assert abs(d.read(117) - start - speed * 4 * 60_000 / 65536) < 1       # 65536 counts in 0.6 s: no drift
