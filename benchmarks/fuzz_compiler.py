@@ -17,7 +17,7 @@ Generators (share of the benchmark's cases in GENERATORS):
   token_stream     text from a vocabulary of keywords, command names, identifiers, numbers (decimal, hex, octal,
                    doubles, characters), strings, operators, preprocessor lines, comments, junk characters and
                    newlines;
-  mutated_example  an example program of tests/aposs/examples with 1-4 random edits (lines deleted, duplicated,
+  mutated_example  an example program of tests/aposs/manual with 1-4 random edits (lines deleted, duplicated,
                    swapped, moved or borrowed; characters deleted or inserted; tokens replaced, deleted, duplicated
                    or swapped; the text truncated);
   semantic_soup    a grammar-generated program with wrong names, types, arities, constants and definitions
@@ -50,7 +50,7 @@ from motiontool.aposs.driver import CompileResult, compile_source
 from motiontool.aposs.image import ProgramImage
 
 REPO = Path(__file__).resolve().parents[1]
-EXAMPLES_DIR = REPO / "tests" / "aposs" / "examples"
+EXAMPLES_DIR = REPO / "tests" / "aposs" / "manual"
 # The name the generated text is compiled under: `#include "D12_hello.m"` then finds a real file next to it.
 INPUT_PATH = str(EXAMPLES_DIR / "fuzz_input.m")
 EXAMPLES = {p.name: p.read_text(encoding="utf-8") for p in sorted(EXAMPLES_DIR.glob("*.m"))}

@@ -4,7 +4,7 @@ import pytest
 
 from motiontool.aposs.driver import compile_source
 
-EXAMPLES = Path(__file__).with_name("examples")
+EXAMPLES = Path(__file__).with_name("manual")
 
 
 def compile_text(text: str, name: str = "prog.m", **kw):

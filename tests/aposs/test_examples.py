@@ -1,5 +1,5 @@
 """Every example program of the two MCO seeds passes `motiontool check` (issue 3), with the OCR repairs
-listed in tests/aposs/examples/README.md."""
+listed in tests/aposs/manual/README.md."""
 
 import subprocess
 import sys

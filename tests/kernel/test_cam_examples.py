@@ -1,6 +1,6 @@
 """The Design Guide's CAM application programs (DG 1342-1772) on the simulator, with a simulated conveyor master.
 
-The programs are the compiler tests' copies of the manual's (tests/aposs/examples/D07-D09, with their OCR repairs)
+The programs are the compiler tests' copies of the manual's (tests/aposs/manual/D07-D09, with their OCR repairs)
 and, for the CAM box fragment, tests/kernel/cam_examples/cambox.m with its set-up; the curve arrays are the manual's
 curves (tests/camcurve/conftest.py) encoded with camcurve.layout.encode and restored into the controller as a
 .zbc download would (DG 1466-1468: "Load the .zbc file … by means of Parameters → Restore from file").
@@ -21,7 +21,7 @@ from tests.camcurve.conftest import marker_curve, stamping_curve
 from tests.kernel.helpers import start
 
 EXAMPLES = Path(__file__).parent / "cam_examples"
-MANUAL = Path(__file__).parents[1] / "aposs" / "examples"
+MANUAL = Path(__file__).parents[1] / "aposs" / "manual"
 STAMPING, MARKER, SLAVESYNC = (MANUAL / name for name in ("D07_cam_stamping.m", "D08_cam_marker_correction.m",
                                                           "D09_cam_slave_marker.m"))
 QC_PER_MU = 2048 / 55          # DG 1420: "2048/55 qc = 1 MU" (SYNCFACTM / SYNCFACTS)

@@ -1,7 +1,7 @@
 """The Design Guide's marker applications on the simulator: "Printing of Cardboard Boxes with Marker Correction"
 (SYNCCMM, DG 1493-1566), "Slave Synchronization with Marker" (SYNCCMS, DG 1608-1746) and "Packaging with Varying
 Product Distance and Slip" (SYNCM, DG 1166-1340). The programs are the compiler tests' copies of the manual's,
-tests/aposs/examples/D08_cam_marker_correction.m, D09_cam_slave_marker.m and D06_marker_sync.m (the same program
+tests/aposs/manual/D08_cam_marker_correction.m, D09_cam_slave_marker.m and D06_marker_sync.m (the same program
 is not kept twice); the curves are the manual's (tests/camcurve/conftest.py), restored as a .zbc download would.
 """
 
@@ -17,7 +17,7 @@ from tests.camcurve.conftest import marker_curve, slavesync_curve
 from tests.kernel.helpers import start
 from tests.kernel.test_cam_examples import MARKER, QC_PER_MU, SLAVESYNC, run_example, start_conveyor
 
-D06 = Path(__file__).parents[1] / "aposs" / "examples" / "D06_marker_sync.m"
+D06 = Path(__file__).parents[1] / "aposs" / "manual" / "D06_marker_sync.m"
 
 
 def _window(m: float, start: float, end: float, length: float, slack: float) -> bool:

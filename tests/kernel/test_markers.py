@@ -14,7 +14,7 @@ from motiontool.kernel.plant import PlantConfig
 from tests.kernel.helpers import start
 
 LOOP = "WHILE 1 DO\nENDWHILE\n"
-EXAMPLES = Path(__file__).parents[1] / "aposs" / "examples"
+EXAMPLES = Path(__file__).parents[1] / "aposs" / "manual"
 IDLE = "WAITT 100000000\n"  # waiting costs no program time, so long simulations stay fast
 SYNC = "VEL 100\nACC 100\nDEC 100\n"
 EXTERNAL = {"SYNCMTYPM": 2, "SYNCMTYPS": 2, "SYNCMPULSM": 10000, "SYNCMPULSS": 10000, "FFVEL": 1000,

@@ -12,7 +12,7 @@ from motiontool.kernel.master import MasterConfig
 from motiontool.kernel.sync import OffsetFilter, velocity_filter_ms
 from tests.kernel.helpers import start
 
-EXAMPLES = Path(__file__).parents[1] / "aposs" / "examples"
+EXAMPLES = Path(__file__).parents[1] / "aposs" / "manual"
 IDLE = "WAITT 100000000\n"
 FAST = {"FFVEL": 1000, "KPROP": 100}
 
