@@ -3,7 +3,9 @@ virtual time and report exactly what the program printed (stdout) and the contro
 
 from __future__ import annotations
 
+import contextlib
 import csv
+import os
 import re
 import sys
 from dataclasses import dataclass, field
@@ -35,6 +37,33 @@ class RunOptions:
     nodes: list[str] = field(default_factory=list)          # ID:PROGRAM.m: several controllers (run_nodes)
     master_node: int | None = None                          # whose PULSVEL is everyone's master (default lowest)
 
+
+
+class PrintOutput:
+    """Where PRINT lines go (stdout). A reader that stops reading (`motiontool run … | head`) closes the pipe:
+    the run then ends quietly after the current step instead of failing with a traceback; nothing more is
+    written and the exit status is the program's so far."""
+
+    def __init__(self, stream: TextIO):
+        self.stream = stream
+        self.closed = False
+
+    def line(self, text: str) -> None:
+        if not self.closed:
+            self._guarded(print, text, file=self.stream)
+
+    def flush(self) -> None:
+        if not self.closed:
+            self._guarded(self.stream.flush)
+
+    def _guarded(self, write, *args, **kw) -> None:
+        try:
+            write(*args, **kw)
+        except BrokenPipeError:
+            self.closed = True
+            # the interpreter flushes stdout once more at exit: point it at /dev/null (Python docs, SIGPIPE)
+            with contextlib.suppress(OSError, ValueError, AttributeError):
+                os.dup2(os.open(os.devnull, os.O_WRONLY), self.stream.fileno())
 
 
 def compile_program(path, options, err):
@@ -97,10 +126,11 @@ def run_program(path: Path | None, options: RunOptions, out: TextIO = sys.stdout
     link = EmbeddedLink(realtime_factor=1.0 if options.realtime else None)
     state = {"error": False}
     trace_rows: list[list] = []
+    output = PrintOutput(out)
 
     def on_event(event: LinkEvent) -> None:
         if event.kind == "print":
-            print(event.text, file=out)
+            output.line(event.text)
         elif event.kind == "error":
             where = f" (line {event.line})" if event.line else ""
             print(f"{event.text}{where}", file=err)
@@ -129,8 +159,9 @@ def run_program(path: Path | None, options: RunOptions, out: TextIO = sys.stdout
             else:
                 link.advance(n)
             elapsed += n
-            if link.status().program_state != "running":
+            if link.status().program_state != "running" or output.closed:
                 break
+        output.flush()
         if options.trace:
             link.call("stream", signals=[], interval_ms=1)
             _write_csv(options.trace, ["time_ms", *options.signals], trace_rows)
@@ -234,11 +265,12 @@ def run_nodes(path: Path | None, options: RunOptions, out: TextIO = sys.stdout, 
         return EXIT_COMPILE
     failed: set[int] = set()
     traces: dict[int, dict[int, list]] = {n: {} for n in nodes}
+    output = PrintOutput(out)
 
     def listener(n: int):
         def on_event(event: LinkEvent) -> None:
             if event.kind == "print":
-                print(f"{n}: {event.text}", file=out)
+                output.line(f"{n}: {event.text}")
             elif event.kind == "error":
                 where = f" (line {event.line})" if event.line else ""
                 print(f"{n}: {event.text}{where}", file=err)
@@ -260,7 +292,8 @@ def run_nodes(path: Path | None, options: RunOptions, out: TextIO = sys.stdout, 
         for n in nodes:
             bus.link(n).download(images[n].to_bytes(), name=images[n].name)
             bus.link(n).start()
-        _advance_all(bus, nodes, options)
+        _advance_all(bus, nodes, options, output)
+        output.flush()
         if options.trace:
             for n in nodes:
                 bus.link(n).call("stream", signals=[], interval_ms=1)
@@ -281,7 +314,7 @@ def run_nodes(path: Path | None, options: RunOptions, out: TextIO = sys.stdout, 
     return EXIT_CONTROLLER if failed else EXIT_OK
 
 
-def _advance_all(bus, nodes: list[int], options: RunOptions) -> None:
+def _advance_all(bus, nodes: list[int], options: RunOptions, output: PrintOutput) -> None:
     """Virtual time for all nodes together until every program has stopped or the time is up."""
     import time
 
@@ -294,5 +327,5 @@ def _advance_all(bus, nodes: list[int], options: RunOptions) -> None:
         elapsed += n
         if options.realtime:  # pace virtual time at real time
             time.sleep(max(0.0, elapsed / 1000 - (time.monotonic() - started)))
-        if all(bus.link(node).status().program_state != "running" for node in nodes):
+        if output.closed or all(bus.link(node).status().program_state != "running" for node in nodes):
             break

@@ -47,3 +47,36 @@ def test_set_input_and_trace(tmp_path):
 def test_time_limit_ends_a_running_program(tmp_path):
     proc = run_cli(tmp_path, "main:\nDELAY 10\nGOTO main\n", "--seconds", "0.5")
     assert proc.returncode == 0
+
+
+def _run_into_closed_pipe(tmp_path, source, *args, lines=1):
+    """Start `motiontool run`, read `lines` lines of its stdout and close the pipe (like `| head -1`)."""
+    program = tmp_path / "p.m"
+    program.write_text(source)
+    proc = subprocess.Popen([sys.executable, "-m", "motiontool", "run", str(program), *args],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    got = [proc.stdout.readline() for _ in range(lines)]
+    proc.stdout.close()
+    err = proc.stderr.read()
+    proc.stderr.close()
+    return got, proc.wait(timeout=120), err
+
+
+LOOP = 'i = 0\nWHILE 1 DO\n  PRINT "line ", i\n  i = i + 1\n  DELAY 1\nENDWHILE\n'
+
+
+def test_a_closed_stdout_ends_the_run_quietly(tmp_path):
+    """Issue 17 item 6: `motiontool run … | head -1` — the reader goes away, the run ends without a traceback
+    (with one controller and with several, --node)."""
+    (tmp_path / "s.m").write_text("DELAY 20000\n")
+    for extra in ([], ["--node", f"2:{tmp_path / 's.m'}"]):
+        got, code, err = _run_into_closed_pipe(tmp_path, LOOP, "--seconds", "20", *extra)
+        assert got[0].endswith("line 0\n")
+        assert err == "" and code == 0
+
+
+def test_a_pipe_closed_before_the_last_lines_are_flushed_ends_quietly(tmp_path):
+    """The few lines of a short program sit in the output buffer until the end: the reader that left before
+    then must not get a BrokenPipeError at exit either."""
+    got, code, err = _run_into_closed_pipe(tmp_path, 'DELAY 200\nPRINT "a"\nPRINT "b"\n', lines=0)
+    assert err == "" and code == 0
