@@ -131,3 +131,35 @@ def test_retrigger_during_own_handler_runs_once_afterwards():
     inputs = [(5, 1, 10), (5, 0, 20), (5, 1, 30), (5, 0, 40), (5, 1, 50), (5, 0, 60)]
     run = run_source(src, 2000, inputs=inputs)
     assert run.prints == ["2"]
+
+
+MAPOS_HANDLERS = """
+SUBMAINPROG
+SUBPROG up
+  PRINT "up ", MAPOS
+RETURN
+SUBPROG down
+  PRINT "down ", MAPOS
+RETURN
+ENDPROG
+"""
+
+
+def test_on_mapos_calls_the_subprogram_when_the_master_passes_the_position():
+    """CR 2930-2931: "ON MAPOS .. GOSUB Call up a subprogram when the master position xxx … has been passed in
+    positive or negative direction"; DG 7158: "ON MAPOS = when the master position xxx [qc] is passed" (K46).
+    The virtual master (PULSVEL 10000 = 40 qc/ms) passes 10000 qc forward, then backward; the gear 3:1 shows the
+    position is in qc, not MU."""
+    run = run_source("ON +MAPOS 10000 GOSUB up\nON -MAPOS 10000 GOSUB down\nPULSVEL 10000\nDELAY 500\n"
+                     "PULSVEL -10000\nDELAY 500\n" + MAPOS_HANDLERS, 3000, settings={"SYNCFACTM": 3, "SYNCFACTS": 1})
+    assert [p.split()[0] for p in run.prints] == ["up", "down"]
+    up, down = (int(p.split()[1]) for p in run.prints)
+    assert 10000 <= up <= 10000 + 2 * 40 and 10000 - 2 * 40 <= down <= 10000  # within 2 ms (CR 2706-2711)
+
+
+def test_on_mapos_setout_switches_the_output_in_the_background():
+    """CR 2985-3007: "ON +/- type position SETOUT outno" — all position interrupts, "handled in the background and
+    do not interrupt the application program"."""
+    run = run_source("ON +MAPOS 2000 SETOUT 4\nON +MAPOS 6000 SETOUT -4\nPULSVEL 10000\nDELAY 25\nPRINT GET 3441\n"
+                     "DELAY 100\nPRINT GET 3441\nDELAY 100\nPRINT GET 3441\n", 1000)
+    assert run.prints == ["0", "8", "0"]  # 34-41 digital outputs: output 4 is bit 3

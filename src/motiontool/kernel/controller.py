@@ -396,6 +396,8 @@ class Controller:
         if sources:
             kinds = {s.kind for s in sources}
             positions = {"APOS": self.uu(self.axis.apos)} if "APOS" in kinds else {}
+            if "MAPOS" in kinds:  # master qc, like the MAPOS readout (decision K46)
+                positions["MAPOS"] = self.master.mapos
             if "IPOS" in kinds or "MIPOS" in kinds:  # distance since the last marker (DG 7158)
                 positions["IPOS"] = self.uu(self.axis.apos) - self.uu(self.markers.ipos_qc())
                 positions["MIPOS"] = self.master.mapos - self.markers.mipos()
