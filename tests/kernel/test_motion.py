@@ -206,3 +206,23 @@ def test_interrupt_abandons_home():
     run = run_source(src, 5000, inputs=[(3, 1, 1000)])
     assert run.prints == ["1"]
     assert run.controller.axis.homing is None and not run.controller.homed
+
+
+def test_home_force_demands_home_first_and_again_after_an_axis_parameter_change():
+    """DG 9199-9204 (33-00 HOME_FORCE 1): "after turning on … and after changing axis parameters a forced tracking of
+    the home position must be made before a motion command is executed"; "For a motion command that is not executed
+    with a terminated home run the error 106 is triggered". HOME itself is that home run (it was refused with 106,
+    so no program could ever move). A global parameter (33-5x I/O configuration) does not count (K47)."""
+    handler = "SUBMAINPROG\nSUBPROG h\nPRINT \"error \", ERRNO\nERRCLR\nRETURN\nENDPROG\n"
+    settings = {"I_FUNCTION_1": 1, "HOME_FORCE": 1}
+    run = run_source("ON ERROR GOSUB h\nPOSA 1000\nINDEX\nHOME\nPOSA 1000\nDELAY 300\nPRINT \"at \", APOS\n"
+                     "SET I_FUNCTION_2 7\nPOSR 1000\nDELAY 300\nPRINT \"at \", APOS\n"
+                     "SET KPROP 40\nPOSA 0\nHOME\nPOSA 0\nDELAY 300\nPRINT \"at \", APOS\n" + handler, 40000,
+                     settings=settings)
+    assert [e.number for e in run.errors] == [106, 106, 106]
+    assert run.prints[:2] == ["error 106", "error 106"]
+    assert abs(int(run.prints[2].split()[1]) - 1000) <= 2
+    assert abs(int(run.prints[3].split()[1]) - 2000) <= 2      # a global parameter: no new home run needed
+    assert run.prints[4] == "error 106"                        # KPROP (32-60) is an axis parameter
+    assert abs(int(run.prints[5].split()[1])) <= 2
+    assert run.state == "ended"

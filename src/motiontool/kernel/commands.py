@@ -66,13 +66,14 @@ def _limits(ctl, vel_value=None, for_stop=False):
     return a.limits(vel, acc, dec, ramp, jerk)
 
 
-def _motion_allowed(ctl) -> None:
-    """DG 11444-11456: no motion while an error is pending (105) or before a forced HOME (106). A motion
-    command does not switch the motor on (CR 624-648: CSTART does not imply MOTOR ON)."""
+def _motion_allowed(ctl, home_run: bool = False) -> None:
+    """DG 11444-11456: no motion while an error is pending (105) or, with 33-00 HOME_FORCE 1, before a completed
+    HOME (106) — HOME itself is the home run that is demanded (DG 9199-9204). A motion command does not switch
+    the motor on (CR 624-648: CSTART does not imply MOTOR ON)."""
     if ctl.error:
         raise ControllerError(105, f"error {ctl.error} is pending")
-    if ctl.params["HOME_FORCE"] == 1 and not ctl.homed:
-        raise ControllerError(106)
+    if not home_run and ctl.params["HOME_FORCE"] == 1 and not ctl.homed:
+        raise ControllerError(106, "HOME_FORCE 1: HOME first (after power on or a changed axis parameter)")
 
 
 def _check_soft_limits(ctl, target_qc: int) -> None:
@@ -193,7 +194,7 @@ def waitax(ctl, vm, args):
 
 @command("HOME", "INDEX")
 def home(ctl, vm, args, index_only=False):
-    _motion_allowed(ctl)
+    _motion_allowed(ctl, home_run=not index_only)
     p, axis = ctl.params, ctl.axis
     home_vel = p["HOME_VEL"]
     if home_vel == 0:

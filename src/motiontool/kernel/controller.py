@@ -19,7 +19,7 @@ from motiontool.kernel.errors import AXIS_ERRORS, ControllerError, error_text
 from motiontool.kernel.interrupts import Interrupts
 from motiontool.kernel.markers import Markers
 from motiontool.kernel.master import Master, MasterConfig
-from motiontool.kernel.parameters import ParameterStore
+from motiontool.kernel.parameters import ParameterStore, is_axis_parameter
 from motiontool.kernel.plant import PlantConfig
 from motiontool.kernel.recorder import Recorder
 from motiontool.kernel.sysvars import read_sysvar
@@ -125,6 +125,9 @@ class Controller:
         self._functions = None
         if index // 100 in (32, 33):
             self.apply_parameters()
+            # DG 9199-9200: with HOME_FORCE "after changing axis parameters" the home run must be repeated
+            if self.homed and is_axis_parameter(index) and value != self._homed_with.get(index, value):
+                self.homed = False
         if source != "program":  # CR 2779-2810: ON PARAM fires for LCP/SDO/PDO writes, not program writes
             self.interrupts.fire_param(index)
 
@@ -520,8 +523,10 @@ class Controller:
             self.axis.shift_origin(round(self.axis.cpos))
             self.axis.limit_offset = 0
             self.homed = True
+            self._homed_with = {i: v for i, v in self.params.values.items() if is_axis_parameter(i)}
 
-    homed = False
+    homed = False             # a HOME completed since power on and no axis parameter changed since (HOME_FORCE)
+    _homed_with: dict = {}    # the axis parameters of that HOME
 
     # --- events ------------------------------------------------------------------------------------------
     def _emit(self, event: Event) -> None:

@@ -21,6 +21,12 @@ def raw_value(parameter: Parameter, value: int | float) -> int:
 PRGPAR_INDEX = 3380
 
 
+def is_axis_parameter(index: int) -> bool:
+    """32-xx and 33-0x … 33-4x; the global parameters are 33-5x … 33-9x (I/O configuration, global, MCO port; DG
+    2808 "the functions of the inputs and outputs and the standard parameters … in 33-5* and 33-8*", decision K47)."""
+    return index // 100 == 32 or (index // 100 == 33 and index % 100 < 50)
+
+
 class ParameterStore:
     def __init__(self, db: ParameterDatabase | None = None):
         self.db = db or database()
