@@ -7,7 +7,8 @@
 // Expect: CPOS - MAPOS = 2000, SYNCERR 40
 // Expect-end: ended
 //
-// SYNCP locks the slave position to the master position: slave = MAPOS x
+// SYNCP locks the slave position to the master position as they stand at
+// the start, or as DEFSYNCORIGIN relates them: slave = MAPOS x
 // SYNCFACTS/SYNCFACTM (+ offset). Unlike SYNCV no position error builds
 // up, so a printing roller stays in register with the web. A slave that
 // starts behind a running master catches up within VEL/ACC first; bit 3
@@ -24,7 +25,8 @@ ACC 100
 DEC 100
 VEL 100
 
-DEFMORIGIN               // master position 0 here belongs to slave position 0
+DEFMORIGIN               // the master position here is 0 ...
+DEFSYNCORIGIN 0 0        // ... and belongs to slave position 0
 PULSVEL 10000            // 40000 master qc/s
 DELAY 500                // the master is 20000 qc ahead when the slave starts
 SYNCP

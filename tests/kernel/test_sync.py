@@ -98,14 +98,16 @@ def test_syncv_is_limited_by_vel():
 
 
 def test_syncp_catches_up_then_cpos_follows_mapos_exactly():
-    """DG 944-1140: CPOS = MAPOS · gear + offset; the start is caught up within VEL/ACC, then locked."""
+    """DG 944-1140: CPOS = MAPOS · gear + offset from the relation at the start (K17); a slave standing while the master
+    runs lags behind first and catches up within VEL/ACC (K18), then it is locked: CPOS follows exactly."""
     settings = {"SYNCFACTS": 55, "SYNCFACTM": 32, "SYNCPOSOFFS": 1000, **FAST}
-    run = start("VEL 100\nACC 100\nDEC 100\nSYNCP\n"
+    run = start("VEL 100\nACC 100\nDEC 100\nm0 = MAPOS\nSYNCP\nPRINT m0\n"
                 "WHILE 1 DO\n  IF (SYNCSTAT & 4) THEN\n    OUT 1 1\n  ELSE\n    OUT 1 0\n  ENDIF\nENDWHILE\n",
                 settings=settings, master=MasterConfig(velocity=20.0, start_position_qc=20000))
     ctl = run.controller
     run.advance(200)
     assert not ctl.axis.sync.locked and ctl.io.outputs.get(1, 0) == 0  # still catching up
+    m0 = int(run.prints[0])
     peak = 0.0
     for _ in range(30):
         run.advance(100)
@@ -114,10 +116,31 @@ def test_syncp_catches_up_then_cpos_follows_mapos_exactly():
     assert ctl.axis.sync.locked
     for _ in range(50):
         run.advance(7)
-        assert ctl.uu(ctl.axis.cpos) == (ctl.master.mapos + 1000) * 55 // 32
+        assert ctl.uu(ctl.axis.cpos) == (ctl.master.mapos - m0 + 1000) * 55 // 32
     assert abs(ctl.syncerr()) < 100
     assert ctl.syncstat() & 4 and ctl.params.get(3460) & 4
     assert ctl.io.outputs.get(1) == 1                                  # DG 1055: IF (SYNCSTAT & 4)
+    assert not run.errors
+
+
+def test_syncp_locks_the_slave_to_the_master_where_they_stand():
+    """DG 948: "When starting position synchronizing the actual slave position will be locked to the actual master
+    position, it is thus necessary to bring the slave into the right physical position with respect to the physical
+    position of the master." With the master at 233 512 qc the slave used to chase MAPOS × gear from absolute 0 at
+    full speed; now it stays where it is until the master moves and then follows it (K17)."""
+    master = MasterConfig(table=((0, 0.0), (1000, 0.0), (1500, 10.0)), start_position_qc=233_512)
+    run = start("VEL 100\nACC 100\nDEC 100\nPOSA 5000\nSYNCP\n" + LOOP,
+                settings={"SYNCFACTS": 3, "SYNCFACTM": 2, **FAST}, master=master)
+    ctl = run.controller
+    run.advance(900)
+    assert ctl.axis.mode == "sync" and ctl.axis.sync.locked and ctl.axis.cpos == 5000
+    assert ctl.syncstat() & 4 and ctl.syncerr() <= 2
+    fastest = 0.0
+    for _ in range(2100):
+        run.advance(1)
+        fastest = max(fastest, ctl.axis.profile.velocity)
+        assert ctl.uu(ctl.axis.cpos) == 5000 + (ctl.master.mapos - 233_512) * 3 // 2
+    assert fastest == pytest.approx(15.0)    # master 10 qc/ms × 3/2: never more
     assert not run.errors
 
 
@@ -139,7 +162,7 @@ def test_syncerr_is_signed_with_negative_syncaccuracy():
 
 
 def test_movesyncorigin_and_syncposoffs_shift_the_slave_within_the_limits():
-    run = start("VEL 100\nACC 100\nDEC 100\nSYNCP\nDELAY 500\nMOVESYNCORIGIN 4000\nDELAY 1500\n"
+    run = start("VEL 100\nACC 100\nDEC 100\nm0 = MAPOS\nSYNCP\nPRINT m0\nDELAY 500\nMOVESYNCORIGIN 4000\nDELAY 1500\n"
                 "SET SYNCPOSOFFS -2000\n" + LOOP,
                 settings={"SYNCFACTS": 3, "SYNCFACTM": 2, **FAST}, master=MasterConfig(velocity=10.0))
     ctl = run.controller
@@ -153,10 +176,11 @@ def test_movesyncorigin_and_syncposoffs_shift_the_slave_within_the_limits():
         assert abs(v - last_v) <= amax + 1e-9  # smooth: no jump of the commanded velocity
         last_v = v
     assert ctl.axis.sync.locked
-    assert ctl.uu(ctl.axis.cpos) == (ctl.master.mapos + 4000) * 3 // 2
+    m0 = int(run.prints[0])
+    assert ctl.uu(ctl.axis.cpos) == (ctl.master.mapos - m0 + 4000) * 3 // 2
     run.advance(1500)
     assert ctl.axis.sync.locked
-    assert ctl.uu(ctl.axis.cpos) == (ctl.master.mapos + 4000 - 2000) * 3 // 2
+    assert ctl.uu(ctl.axis.cpos) == (ctl.master.mapos - m0 + 4000 - 2000) * 3 // 2
     assert not run.errors
 
 
@@ -194,3 +218,25 @@ def test_sync_needs_no_pending_error_and_esc_stops_the_virtual_master():
     run.advance(500)
     assert run.controller.master.velocity == 0.0
     assert run.controller.axis.mode == "idle"
+
+
+def test_the_origin_of_synchronisation_belongs_to_each_syncp():
+    """CR 2397-2415: MOVESYNCORIGIN "shifts the origin of synchronization … relates to the last one"; CR 903-906:
+    DEFSYNCORIGIN's internal MOVESYNCORIGIN is done "at the moment, when the SYNC command is activated". So a
+    MOVESYNCORIGIN before SYNCP shifts the relation that SYNCP locks (DG 948), a SYNCP given while one runs keeps the
+    running relation, and after MOTOR STOP a new SYNCP locks afresh without the old relative shifts (K17). SYNCM
+    starts "like position synchronization" (DG 1149)."""
+    master = MasterConfig(table=((0, 0.0), (400, 0.0), (500, 4.0)), start_position_qc=100_000)
+    run = start("VEL 100\nACC 100\nDEC 100\nMOVESYNCORIGIN 600\nSYNCP\nDELAY 1000\nPRINT CPOS - (MAPOS - 100000)\n"
+                "MOVESYNCORIGIN -200\nDELAY 500\nSYNCP\nDELAY 500\nPRINT CPOS - (MAPOS - 100000)\n"
+                "MOTOR STOP\nDELAY 200\nc = CPOS\nm = MAPOS\nSYNCM\nDELAY 500\nPRINT CPOS - c - (MAPOS - m)\n" + LOOP,
+                settings=FAST, master=master)
+    ctl = run.controller
+    run.advance(300)
+    assert ctl.axis.cpos == pytest.approx(600, abs=1e-9)        # the shift is realised at the start
+    run.advance(3000)
+    assert not run.errors
+    first, kept, afresh = (int(p) for p in run.prints)
+    assert first == 600                                            # the master has moved meanwhile
+    assert kept == 400                                             # 600 − 200, the second SYNCP changed nothing
+    assert afresh == 0                                             # no shift carried into the new SYNCM

@@ -150,7 +150,11 @@ def test_d05_position_sync_example_homes_synchronises_and_trims_the_offset():
     ctl = run.controller
     run.advance(13900)
     assert ctl.homed and ctl.axis.mode == "idle" and ctl.io.outputs.get(2) == 1      # "Homing done"
-    run.advance(2000)
+    while ctl.axis.mode != "sync":
+        run.advance(1)
+    start_master, start_slave = ctl.master.mapos, ctl.axis.cpos   # the relation SYNCP locks (DG 948, K17)
+    assert start_master >= 70_000 and start_slave == 0
+    run.advance(15900 - ctl.time_ms)
     assert ctl.axis.mode == "sync" and ctl.io.outputs.get(1) == 1                    # within accuracy
     run.advance(2000)
     offset = ctl.params["SYNCPOSOFFS"]
@@ -158,7 +162,7 @@ def test_d05_position_sync_example_homes_synchronises_and_trims_the_offset():
     # at SYNCP), so the third press sets the same 1000 again (decrease_offset reads GET SYNCPOSOFFS)
     assert offset == 1000
     run.advance(900)
-    assert ctl.axis.cpos - ctl.master.mapos == pytest.approx(offset, abs=1)     # slave 0 ↔ MAPOS 0 (K17)
+    assert ctl.axis.cpos - (ctl.master.mapos - start_master) == pytest.approx(offset, abs=1)
     assert abs(ctl.syncerr()) < 20
     run.advance(2000)
     assert ctl.axis.mode == "idle" and ctl.io.outputs.get(1) == 0 and ctl.io.outputs.get(2) == 0

@@ -60,7 +60,8 @@ class ProgramData:
     pid_state: list = field(default_factory=lambda: [0, 0])
     linked: dict = field(default_factory=dict)
     print_device: int = 0
-    sync_shift: int = 0                       # Σ MOVESYNCORIGIN (master qc)
+    sync_shift: int = 0                       # Σ MOVESYNCORIGIN (master qc): shifts the curve master position
+    next_sync_shift: int = 0                  # Σ MOVESYNCORIGIN given while no SYNCP/SYNCM ran: for the next one
     sync_origin: tuple[int, int] | None = None  # DEFSYNCORIGIN (master, slave) for the next SYNCP
     syncstat_flags: int = 0                   # latched SYNCSTAT bits (marker hits/errors), SYNCSTATCLR
     cam: object | None = None                 # cam.CamState of the last SETCURVE

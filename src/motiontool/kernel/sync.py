@@ -7,8 +7,10 @@ The gear SYNCFACTS/SYNCFACTM (33-11 / 33-10, slave qc per master qc, DG 9318-932
 SYNCV: the commanded velocity follows master velocity × gear, clamped to VEL and ramped with ACC/DEC (DG 810).
 
 SYNCP: the commanded position follows the target T = base_slave + ⌊(MAPOS − base_master + SYNCPOSOFFS +
-Σ MOVESYNCORIGIN) · SYNCFACTS / SYNCFACTM⌋ (offsets in master qc, converted with the gear; base = the
-DEFSYNCORIGIN pair, else 0, i.e. slave axis position 0 belongs to MAPOS 0). While the slave is away from
+Σ MOVESYNCORIGIN) · SYNCFACTS / SYNCFACTM⌋ (offsets in master qc, converted with the gear). The base is the
+relation at the start: "the actual slave position will be locked to the actual master position" (DG 948), i.e.
+the slave's commanded position belongs to MAPOS at SYNCP, unless DEFSYNCORIGIN named the pair (decision K17).
+While the slave is away from
 T (start, offset change, a master faster than the slave can follow) it catches up within VEL and ACC/DEC:
 relative to the master it runs on a braking curve for min(ACC, DEC); when the remaining gap and the
 relative velocity are below one step it locks, and from then on CPOS = T exactly each ms.
@@ -139,13 +141,15 @@ class SyncMotion:
 
     def __init__(self, kind: str, master, gear: Gear, limits, offset=lambda: 0, base_slave: int = 0,
                  accuracy: int = 1000, *, velrel: int = 0, vfilter_ms: float = 0.0, offtime: int = 0,
-                 marker_distance: int = 4096, revers: int = 0, ffvel: int = 0, spread_ms: float = 0.0):
+                 marker_distance: int = 4096, revers: int = 0, ffvel: int = 0, spread_ms: float = 0.0,
+                 shift: int = 0):
         self.kind = kind
         self.master = master
         self.gear = gear
         self.vel, self.acc, self.dec = limits.vel, limits.acc, limits.dec
-        self.offset = offset          # SYNCPOSOFFS + MOVESYNCORIGIN (master qc), read every tick
-        self._offset = offset()
+        self.offset = offset          # SYNCPOSOFFS (master qc), read every tick
+        self.shift = shift            # Σ MOVESYNCORIGIN of this synchronisation (master qc)
+        self._offset = offset() + shift
         self.offset_applied = self._offset  # master qc of offset already in the target
         self._raw = master.raw
         self.base_slave = base_slave
@@ -180,7 +184,7 @@ class SyncMotion:
             pg.position += v
         else:
             pg.position -= self._lead  # the lead is added to the output only; the sync runs without it
-            offset = self.offset()
+            offset = self.offset() + self.shift
             if offset != self._offset:  # realised within the limits / by the offset filter, not as a jump
                 delta = offset - self._offset
                 self.offset_filter.add(delta, self._duration(abs(delta), abs(delta * ratio)))

@@ -34,30 +34,41 @@ def syncv(ctl, vm, args):
 
 @command("SYNCP")
 def syncp(ctl, vm, args, markers: bool = False):
-    """CR 891-975, DG 944-1140: CPOS follows MAPOS × gear + offset (master qc); DEFSYNCORIGIN m s makes
-    slave s belong to master m for this SYNCP. With `markers` it is SYNCM (kernel/markers.py)."""
+    """CR 891-975, DG 944-1140, 9411-9428: CPOS follows MAPOS × gear from the relation at the start (decision K17):
+    "the actual slave position will be locked to the actual master position" (DG 948) — the slave's commanded
+    position belongs to the current MAPOS; a SYNCP/SYNCM while one runs keeps the running relation; DEFSYNCORIGIN m s
+    makes slave s belong to master m instead. SYNCPOSOFFS and MOVESYNCORIGIN (master qc) shift the slave from
+    there, SYNCPOSOFFS "immediately when the command SYNCP follows" (DG 9418). With `markers` it is SYNCM
+    (kernel/markers.py)."""
     _motion_allowed(ctl)
     marker_sync = None
     data = ctl.program_data
-    base_master, base_slave = 0, 0
-    if data.sync_origin is not None:
-        base_master, base_slave = data.sync_origin
-        data.sync_origin = None
-        data.sync_shift = 0  # DEFSYNCORIGIN overrides an earlier MOVESYNCORIGIN (CR 903-906)
     values = ctl.params.values
     offs_index = ctl.params.parameter("SYNCPOSOFFS").index
 
     def offset() -> int:
         if marker_sync is not None and not marker_sync.offset_active:  # SYNCMSTART 1000-1007
-            return data.sync_shift
-        return values[offs_index] + data.sync_shift
+            return 0
+        return values[offs_index]
 
     start_mode = ctl.params["SYNCMSTART"]
     if markers and 1000 <= start_mode < 2000:
         marker_sync = MarkerSync(ctl, None, start_mode)
-    gear = _gear(ctl, ctl.master.mapos - base_master + offset())
+    gear = _gear(ctl)
+    shift, data.next_sync_shift = data.next_sync_shift, 0
+    running = _position_sync(ctl)
+    if data.sync_origin is not None:
+        base_master, base_slave = data.sync_origin
+        data.sync_origin = None
+        shift = 0  # DEFSYNCORIGIN overrides an earlier MOVESYNCORIGIN (CR 903-906)
+    elif running is not None:  # the running relation goes on: the slave is where its target is heading
+        base_master = ctl.master.mapos
+        base_slave = round(running.target + running.pending_qc()) - Gear(gear.s, gear.m, offset()).out
+    else:
+        base_master, base_slave = ctl.master.mapos, round(ctl.axis.cpos)
+    gear = _gear(ctl, ctl.master.mapos - base_master + offset() + shift)
     motion = SyncMotion("position", ctl.master, gear, _limits(ctl), offset, base_slave,
-                        ctl.params["SYNCACCURACY"], **_sync_options(ctl))
+                        ctl.params["SYNCACCURACY"], shift=shift, **_sync_options(ctl))
     if markers:
         marker_sync = marker_sync or MarkerSync(ctl, motion, start_mode)
         marker_sync.motion = motion
@@ -65,9 +76,22 @@ def syncp(ctl, vm, args, markers: bool = False):
     ctl.axis.synchronise(motion)
 
 
+def _position_sync(ctl) -> SyncMotion | None:
+    sync = ctl.axis.sync
+    return sync if ctl.axis.mode == "sync" and isinstance(sync, SyncMotion) and sync.kind == "position" else None
+
+
 @command("MOVESYNCORIGIN")
 def movesyncorigin(ctl, vm, args):
-    ctl.program_data.sync_shift += args[0]  # relative, master qc (CR 2397-2415)
+    """CR 2397-2415: shifts the origin of synchronisation relatively (master qc): of the running SYNCP/SYNCM, else
+    of the next one (decision K17); the curve master position moves with it in CAM (CR 3936)."""
+    data = ctl.program_data
+    data.sync_shift += args[0]
+    running = _position_sync(ctl)
+    if running is not None:
+        running.shift += args[0]
+    else:
+        data.next_sync_shift += args[0]
 
 
 @command("DEFSYNCORIGIN")
