@@ -31,8 +31,13 @@ def _cmd_params(args: argparse.Namespace) -> int:
 
 def _cmd_check(args: argparse.Namespace) -> int:
     from motiontool.aposs.driver import check_files
+    from motiontool.dpl.driver import check_files as check_dpl_files
+    from motiontool.dpl.driver import is_dpl
 
-    return check_files(args.files, include_dirs=args.include, out=sys.stdout)
+    failed = 0
+    for path in args.files:  # in the order given; .dpl files are DPL (APC), the others APOSS
+        failed |= check_dpl_files([path], sys.stdout) if is_dpl(path) else check_files([path], args.include, sys.stdout)
+    return failed
 
 
 def _cmd_compile(args: argparse.Namespace) -> int:
@@ -74,7 +79,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--group", metavar="PREFIX", help="only parameters of this group, e.g. 32-6")
     p.set_defaults(func=_cmd_params)
 
-    p = sub.add_parser("check", help="syntax-check APOSS programs (GCC-style diagnostics)")
+    p = sub.add_parser("check", help="syntax-check APOSS programs and DPL programs (FILE.dpl) (GCC-style diagnostics)")
     p.add_argument("files", nargs="+", type=Path, metavar="FILE")
     p.add_argument("--include", "-I", action="append", type=Path, default=[], metavar="DIR",
                    help="extra system include directory for #include <file>")
