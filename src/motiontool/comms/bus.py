@@ -36,6 +36,10 @@ class NodeLink(Link):
     def alive(self) -> bool:
         return not self.bus.closed
 
+    @property
+    def virtual_time(self) -> bool:
+        return True
+
     def request(self, request: Request) -> Any:
         if self.bus.closed:
             raise LinkError("Lost connection: the simulated controllers have stopped")

@@ -50,6 +50,10 @@ class EmbeddedLink(Link):
     def alive(self) -> bool:
         return not self._stop.is_set() and (self._thread is None or self._thread.is_alive())
 
+    @property
+    def virtual_time(self) -> bool:
+        return self._thread is None
+
     def request(self, request: Request) -> Any:
         if not self.alive:
             raise LinkError("Lost connection: the simulated controller has stopped")

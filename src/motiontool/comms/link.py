@@ -27,6 +27,15 @@ class Link(ABC):
     def close(self) -> None:  # noqa: B027 - links without resources need not override
         pass
 
+    @property
+    def virtual_time(self) -> bool:
+        """True when the controller's clock moves only on `advance` (the synchronous simulator); False when it
+        runs by itself (a real drive, a paced simulator)."""
+        return False
+
+    def flush_events(self) -> None:  # noqa: B027 - links that publish events as they happen need not override
+        """Publish the events the controller has produced so far (wire links poll for them)."""
+
     def subscribe(self, callback: Callable[[LinkEvent], None]) -> None:
         self._subscribers.append(callback)
 

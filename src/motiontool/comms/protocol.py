@@ -113,3 +113,8 @@ class LinkError(Exception):
     def __init__(self, message: str, number: int = 0):
         super().__init__(message)
         self.number = number
+
+
+class ConnectionLost(LinkError):
+    """The controller did not answer (timeouts after every retry, a closed port or socket): the link is down,
+    as opposed to a request the controller refused."""

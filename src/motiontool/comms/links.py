@@ -1,0 +1,154 @@
+"""One syntax for every link: `--link sim` (the embedded simulator), `--link fc:URL[#ADDRESS]`, and whatever other
+schemes register an opener here (`canopen:INTERFACE:CHANNEL[#NODE]`, docs/link-protocol.md "Link syntax").
+
+A link spec is ``SCHEME[:TARGET][#NODE][,KEY=VALUE]...``:
+
+- SCHEME names the opener (``sim``, ``fc``, ``canopen``);
+- TARGET is the scheme's business (for ``fc`` any pyserial URL: ``/dev/ttyUSB0``, ``COM3``,
+  ``socket://127.0.0.1:4001``, ``rfc2217://host:port``);
+- NODE is the controller's bus address or node id (``#2``);
+- ``,KEY=VALUE`` options follow at the end (``,baud=115200,parity=E``); commas and ``#`` are not part of pyserial
+  URLs, and none of these characters needs quoting in a shell.
+
+Openers receive the parsed `LinkSpec` and return an open `Link` or raise `LinkError` saying what failed.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+from motiontool.comms.link import Link
+from motiontool.comms.protocol import LinkError
+
+_OPTION = re.compile(r",([A-Za-z_][A-Za-z0-9_-]*)=([^,#]*)$")
+_NODE = re.compile(r"#([^#,]*)$")
+
+
+@dataclass(frozen=True)
+class LinkSpec:
+    scheme: str
+    target: str = ""
+    node: int | None = None
+    options: dict[str, str] = field(default_factory=dict)
+    text: str = ""
+
+    def option(self, name: str, default, convert: Callable = str):
+        """An option converted by `convert`, or `default`; a bad value is a LinkError naming option and spec."""
+        if name not in self.options:
+            return default
+        try:
+            return convert(self.options[name])
+        except ValueError:
+            raise LinkError(f"link '{self.text}': option {name}={self.options[name]!r} is not valid") from None
+
+    def check_options(self, known: set[str]) -> None:
+        unknown = sorted(set(self.options) - known)
+        if unknown:
+            raise LinkError(f"link '{self.text}': unknown option {unknown[0]!r} "
+                            f"(known: {', '.join(sorted(known)) or 'none'})")
+
+
+def parse_link_spec(text: str) -> LinkSpec:
+    """`SCHEME[:TARGET][#NODE][,KEY=VALUE]...` → LinkSpec; LinkError naming the spec when it is malformed."""
+    rest = text.strip()
+    if not rest:
+        raise LinkError("empty link: give sim, fc:URL[#ADDRESS] or another registered scheme")
+    options: dict[str, str] = {}
+    while (m := _OPTION.search(rest)) is not None:
+        options[m.group(1).lower()] = m.group(2)
+        rest = rest[:m.start()]
+    node = None
+    if (m := _NODE.search(rest)) is not None:
+        value = m.group(1).strip()
+        if not value.isdigit():
+            raise LinkError(f"link '{text}': the address after '#' must be a whole number, got {value!r}")
+        node = int(value)
+        rest = rest[:m.start()]
+    scheme, _, target = rest.partition(":")
+    scheme = scheme.strip().lower()
+    if not re.fullmatch(r"[a-z][a-z0-9_-]*", scheme):
+        raise LinkError(f"link '{text}': '{scheme}' is not a link scheme (try {', '.join(link_schemes())})")
+    return LinkSpec(scheme, target.strip(), node, dict(reversed(options.items())), text.strip())
+
+
+@dataclass(frozen=True)
+class Scheme:
+    name: str
+    opener: Callable[[LinkSpec], Link]
+    syntax: str
+    help: str
+
+
+_SCHEMES: dict[str, Scheme] = {}
+
+
+def register_link_scheme(name: str, opener: Callable[[LinkSpec], Link], syntax: str, help: str = "") -> None:
+    """Make `--link NAME:…` open links with `opener` (called with the parsed LinkSpec)."""
+    _SCHEMES[name.lower()] = Scheme(name.lower(), opener, syntax, help)
+
+
+def link_schemes() -> list[str]:
+    _load_builtin_schemes()
+    return sorted(_SCHEMES)
+
+
+def scheme_help() -> str:
+    """One line per scheme: its syntax and what it opens (for --help texts)."""
+    _load_builtin_schemes()
+    return "; ".join(f"{s.syntax} ({s.help})" if s.help else s.syntax for _, s in sorted(_SCHEMES.items()))
+
+
+def open_link(text: str | LinkSpec) -> Link:
+    """Open the link a spec names; LinkError naming the spec when the scheme is unknown or opening fails."""
+    spec = text if isinstance(text, LinkSpec) else parse_link_spec(text)
+    _load_builtin_schemes()
+    scheme = _SCHEMES.get(spec.scheme)
+    if scheme is None:
+        raise LinkError(f"link '{spec.text}': unknown scheme '{spec.scheme}' (known: {', '.join(link_schemes())})")
+    return scheme.opener(spec)
+
+
+# --- the built-in schemes ---------------------------------------------------------------------------------------
+def _open_sim(spec: LinkSpec) -> Link:
+    """`sim[,realtime=1]`: a simulated controller in this process (comms/embedded.py)."""
+    from motiontool.comms.embedded import EmbeddedLink
+
+    spec.check_options({"realtime"})
+    if spec.target:
+        raise LinkError(f"link '{spec.text}': sim takes no target")
+    realtime = spec.option("realtime", 0.0, float)
+    return EmbeddedLink(realtime_factor=realtime or None)
+
+
+_loaded = False
+
+
+def _load_builtin_schemes() -> None:
+    """Register sim and the wire schemes on first use (the FC and CANopen modules import pyserial/python-can, so
+    they load only when a link is opened)."""
+    global _loaded
+    if _loaded:
+        return
+    _loaded = True
+    if "sim" not in _SCHEMES:
+        register_link_scheme("sim", _open_sim, "sim", "the embedded simulated controller, the default")
+    import_scheme_modules(BUILTIN_MODULES)
+
+
+# modules that register a link scheme on import (comms/canopen is optional: skipped while it does not exist)
+BUILTIN_MODULES = ("motiontool.comms.fc.link", "motiontool.comms.canopen.link")
+
+
+def import_scheme_modules(modules) -> None:
+    """Import the modules that register schemes; a module that does not exist is skipped, while a module that
+    exists but fails (a missing dependency inside it) raises as usual."""
+    import importlib
+
+    for module in modules:
+        try:
+            importlib.import_module(module)
+        except ModuleNotFoundError as exc:
+            if exc.name is None or not module.startswith(exc.name):
+                raise

@@ -1,0 +1,122 @@
+"""RemoteLink: a Link to a controller behind any transport that can exchange messages (comms/wire.py).
+
+A transport is one function, ``exchange(message: bytes) -> bytes``: the FC link chunks the message into
+telegrams (comms/fc/), a CANopen link can write it to an SDO domain object and read the answer back. Everything
+else is here: request ids and the session, decoding answers, and fetching events.
+
+Events are polled (a bus master is never called back): while anything subscribes, a poller thread asks for the
+events after the last one it saw, every `poll_interval_s` or at once while the controller says more are waiting.
+`flush_events()` fetches what is waiting now (the CLI calls it before it reads the status, so output keeps its
+order). Events are published in sequence order, never twice; events the controller had to drop are reported
+as a ``message`` event.
+"""
+
+from __future__ import annotations
+
+import random
+import threading
+from collections.abc import Callable
+from typing import Any
+
+from motiontool.comms.link import Link
+from motiontool.comms.protocol import ConnectionLost, LinkError, LinkEvent, Request
+from motiontool.comms.wire import decode_response, encode_request
+
+POLL_INTERVAL_S = 0.05
+
+
+class RemoteLink(Link):
+    kind = "remote"
+
+    def __init__(self, exchange: Callable[[bytes], bytes], description: str = "",
+                 poll_interval_s: float = POLL_INTERVAL_S):
+        super().__init__()
+        self._exchange = exchange
+        self.description = description
+        self.poll_interval_s = poll_interval_s
+        self.session = random.getrandbits(31) + 1
+        self._next_id = random.getrandbits(20)      # ids differ between links of one session's lifetime too
+        self._bus = threading.RLock()               # one request on the wire at a time
+        self._events_lock = threading.Lock()        # one event poll at a time: events are published in order
+        self._last_event = 0
+        self._epoch: int | None = None
+        self._closed = threading.Event()
+        self._lost = False
+        self._poller: threading.Thread | None = None
+        self._identity: dict | None = None
+
+    # --- requests -------------------------------------------------------------------------------------
+    @property
+    def alive(self) -> bool:
+        return not self._closed.is_set() and not self._lost
+
+    def request(self, request: Request) -> Any:
+        if self._closed.is_set():
+            raise ConnectionLost("the link is closed")
+        with self._bus:
+            try:
+                answer = self._exchange(encode_request(request, self.session))
+            except ConnectionLost:
+                self._lost = True
+                raise
+        response = decode_response(answer)
+        if response.id != request.id and response.ok:
+            raise LinkError(f"answer to request {response.id} where {request.id} was expected")
+        return response.result()
+
+    def identify(self) -> dict:
+        if self._identity is None:
+            self._identity = self.call("identify")
+        return self._identity
+
+    @property
+    def virtual_time(self) -> bool:
+        """True when the controller's clock moves only on `advance` (a virtual drive started with a virtual
+        clock)."""
+        return self.identify().get("clock") == "virtual"
+
+    # --- events ---------------------------------------------------------------------------------------
+    def subscribe(self, callback: Callable[[LinkEvent], None]) -> None:
+        super().subscribe(callback)
+        if self._poller is None and self.alive:
+            self._poller = threading.Thread(target=self._poll_loop, name=f"{self.kind}-events", daemon=True)
+            self._poller.start()
+
+    def poll_events(self) -> bool:
+        """Fetch one batch of events and publish them; True when more are waiting."""
+        with self._events_lock:
+            value = self.call("events", after=self._last_event)
+            if self._epoch is not None and value.get("epoch") != self._epoch and self._last_event:
+                self._publish(LinkEvent("message", 0, "the controller restarted: its event numbers begin again"))
+            self._epoch = value.get("epoch")
+            if value.get("lost"):
+                self._publish(LinkEvent("message", 0, f"{value['lost']} controller events were lost "
+                                                      "(they were not fetched in time)"))
+            for seq, data in value.get("events", []):
+                if seq > self._last_event:
+                    self._publish(LinkEvent(**data))
+            self._last_event = int(value.get("last", self._last_event))
+            return bool(value.get("more"))
+
+    def flush_events(self) -> None:
+        while self.poll_events():
+            pass
+
+    def _poll_loop(self) -> None:
+        while not self._closed.is_set():
+            if self._subscribers:
+                try:
+                    if self.poll_events():
+                        continue
+                except ConnectionLost as exc:
+                    self._lost = True
+                    self._publish(LinkEvent("connection", 0, f"Lost connection: {exc}"))
+                    return
+                except LinkError as exc:  # a refused poll (e.g. a damaged answer): try again next time
+                    self._publish(LinkEvent("message", 0, f"event poll failed: {exc}"))
+            self._closed.wait(self.poll_interval_s)
+
+    def close(self) -> None:
+        self._closed.set()
+        if self._poller is not None and self._poller is not threading.current_thread():
+            self._poller.join(timeout=2.0)
