@@ -1,0 +1,131 @@
+"""`motiontool drive`: simulated controllers in their own process behind one or more listeners, until SIGINT/SIGTERM.
+
+    motiontool drive --listen fc:socket://127.0.0.1:0 --node 1:master.m --node 2 [--clock virtual]
+
+Every listener prints one line ``listening on URL`` (URL is what a master gives to ``--link``) once it serves; the
+process then runs until it is interrupted or terminated and stops cleanly (listeners closed, exit status 0).
+"""
+
+from __future__ import annotations
+
+import re
+import signal
+import sys
+import threading
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TextIO
+
+from motiontool.comms.drive.listeners import open_listener
+from motiontool.comms.drive.simulator import CLOCKS, REACTIONS, VirtualDrive
+from motiontool.comms.protocol import LinkError
+
+_NODE = re.compile(r"^\s*(\d+)\s*(?::(.+))?$")
+
+
+@dataclass
+class DriveOptions:
+    listen: list[str] = field(default_factory=list)
+    nodes: list[str] = field(default_factory=list)          # ID or ID:PROGRAM.m
+    master_node: int | None = None
+    clock: str = "realtime"
+    speed: float = 1.0
+    timeout_s: float | None = None
+    timeout_reaction: str = "stop"
+    include_dirs: list[Path] = field(default_factory=list)
+
+
+def add_parser(sub) -> None:
+    from motiontool.comms.drive.listeners import listener_schemes
+
+    schemes = "; ".join(f"{s.syntax} ({s.help})" for s in listener_schemes())
+    p = sub.add_parser("drive", help="serve simulated controllers to wire links (a virtual drive)",
+                       description="Run simulated MCO 305 controllers in this process, paced at real time, and "
+                                   "serve them over a wire protocol. Prints 'listening on URL' per listener when "
+                                   "ready (URL is the --link of a master); stops cleanly on SIGINT/SIGTERM. "
+                                   f"Listeners: {schemes}.")
+    p.add_argument("--listen", action="append", required=True, metavar="SPEC",
+                   help="where to serve, e.g. fc:socket://127.0.0.1:4001 (port 0: any free port) or fc:pty; "
+                        "repeatable")
+    p.add_argument("--node", action="append", default=[], metavar="ID[:PROGRAM.m]",
+                   help="a controller with bus address/node id ID (1..32), optionally running PROGRAM.m (saved as "
+                        "program 0 and started); repeatable; default: one controller, ID 1")
+    p.add_argument("--master-node", type=int, metavar="ID",
+                   help="the node whose virtual master (PULSVEL) drives the master input of all the others")
+    p.add_argument("--clock", choices=CLOCKS, default="realtime",
+                   help="realtime (default): time runs by itself; virtual: it moves only when a master sends "
+                        "advance (reproducible runs, as the embedded simulator)")
+    p.add_argument("--speed", type=float, default=1.0, help="real-time factor of the realtime clock (default 1)")
+    p.add_argument("--timeout", type=float, metavar="S", dest="timeout_s",
+                   help="link timeout: react when a master that talked to a node is silent this long")
+    p.add_argument("--timeout-reaction", choices=REACTIONS, default="stop",
+                   help="what a running program does on a link timeout (default stop)")
+    p.add_argument("--include", "-I", action="append", type=Path, default=[], metavar="DIR")
+    p.set_defaults(func=lambda args: run_drive(DriveOptions(
+        args.listen, args.node, args.master_node, args.clock, args.speed, args.timeout_s, args.timeout_reaction,
+        args.include)))
+
+
+def _node_specs(specs: list[str]) -> dict[int, Path | None]:
+    nodes: dict[int, Path | None] = {}
+    for spec in specs or ["1"]:
+        m = _NODE.match(spec)
+        if not m:
+            raise ValueError(f"--node needs ID or ID:PROGRAM.m, got '{spec}'")
+        n = int(m.group(1))
+        if n in nodes:
+            raise ValueError(f"--node {n} is given twice")
+        nodes[n] = Path(m.group(2).strip()) if m.group(2) else None
+    return nodes
+
+
+def build_drive(options: DriveOptions, err: TextIO = sys.stderr) -> VirtualDrive | None:
+    """The drive with its programs installed, or None after printing why on err."""
+    from motiontool.aposs.driver import compile_source
+
+    try:
+        programs = _node_specs(options.nodes)
+        drive = VirtualDrive(sorted(programs), master_node=options.master_node, clock=options.clock,
+                             speed=options.speed, timeout_s=options.timeout_s,
+                             timeout_reaction=options.timeout_reaction)
+    except ValueError as exc:
+        print(f"motiontool drive: {exc}", file=err)
+        return None
+    for n, path in programs.items():
+        if path is None:
+            continue
+        result = compile_source(path=path, include_dirs=options.include_dirs)
+        for d in result.diagnostics:
+            print(d.format(), file=err)
+        if not result.ok:
+            return None
+        drive.install_program(n, result.image)
+    return drive
+
+
+def run_drive(options: DriveOptions, out: TextIO = sys.stdout, err: TextIO = sys.stderr) -> int:
+    drive = build_drive(options, err)
+    if drive is None:
+        return 1
+    stop = threading.Event()
+    previous = {sig: signal.signal(sig, lambda *_: stop.set()) for sig in (signal.SIGINT, signal.SIGTERM)}
+    listeners = []
+    try:
+        try:
+            for spec in options.listen:
+                listeners.append(open_listener(spec, drive))
+        except LinkError as exc:
+            print(f"motiontool drive: {exc}", file=err)
+            return 1
+        drive.start()
+        for listener in listeners:
+            print(f"listening on {listener.url}", file=out, flush=True)
+        while not stop.wait(0.2):
+            pass
+        return 0
+    finally:
+        for listener in listeners:
+            listener.close()
+        drive.stop()
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)

@@ -1,0 +1,61 @@
+"""How the virtual drive is reached: a registry of listener schemes, one per protocol.
+
+`motiontool drive --listen SPEC` parses SPEC with the link syntax (comms/links.py) and calls the factory
+registered for its scheme with the spec and the running `VirtualDrive`. A factory returns a `Listener`: it serves
+in its own threads, `url` is the link spec a master passes to `--link` (printed as ``listening on URL``), and
+`close()` stops it. The FC protocol registers ``fc`` (comms/fc/server.py); another protocol registers its own
+(``canopen:slcan:socket://…``) the same way.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Protocol
+
+from motiontool.comms.links import LinkSpec, import_scheme_modules, parse_link_spec
+from motiontool.comms.protocol import LinkError
+
+
+class Listener(Protocol):
+    url: str
+
+    def close(self) -> None: ...
+
+
+@dataclass(frozen=True)
+class ListenerScheme:
+    name: str
+    factory: Callable[[LinkSpec, object], Listener]
+    syntax: str
+    help: str
+
+
+_SCHEMES: dict[str, ListenerScheme] = {}
+# modules that register a listener scheme on import (a missing optional module is skipped)
+BUILTIN_MODULES = ("motiontool.comms.fc.server", "motiontool.comms.canopen.server")
+
+
+def register_listener_scheme(name: str, factory: Callable[[LinkSpec, object], Listener], syntax: str,
+                             help: str = "") -> None:
+    _SCHEMES[name.lower()] = ListenerScheme(name.lower(), factory, syntax, help)
+
+
+def _load() -> None:
+    import_scheme_modules(BUILTIN_MODULES)
+
+
+def listener_schemes() -> list[ListenerScheme]:
+    _load()
+    return [s for _, s in sorted(_SCHEMES.items())]
+
+
+def open_listener(text: str, drive) -> Listener:
+    """Start serving `drive` as SPEC says; LinkError naming the spec when it cannot."""
+    spec = parse_link_spec(text)
+    _load()
+    scheme = _SCHEMES.get(spec.scheme)
+    if scheme is None:
+        known = ", ".join(s.syntax for s in listener_schemes()) or "none"
+        raise LinkError(f"--listen '{text}': unknown scheme '{spec.scheme}' (known: {known})")
+    return scheme.factory(spec, drive)

@@ -1,0 +1,184 @@
+"""The link syntax and scheme registry (comms/links.py), the virtual drive's nodes (comms/drive/): thread-safe
+requests, events with sequence numbers for a polling master, answers kept for repeated requests, the link timeout."""
+
+import threading
+import time
+
+import pytest
+
+from motiontool.aposs.driver import compile_source
+from motiontool.comms import links, wire
+from motiontool.comms.drive.node import EventQueue
+from motiontool.comms.drive.simulator import VirtualDrive
+from motiontool.comms.embedded import EmbeddedLink
+from motiontool.comms.protocol import LinkError, LinkEvent, Request
+from motiontool.comms.remote import RemoteLink
+
+
+def image(source):
+    result = compile_source(source, "p.m")
+    assert result.ok, [d.format() for d in result.diagnostics]
+    return result.image
+
+
+def test_link_specs_parse_into_scheme_target_node_options():
+    spec = links.parse_link_spec("fc:socket://127.0.0.1:4001#2,baud=115200,parity=E")
+    assert (spec.scheme, spec.target, spec.node) == ("fc", "socket://127.0.0.1:4001", 2)
+    assert spec.options == {"baud": "115200", "parity": "E"}
+    assert links.parse_link_spec("fc:/dev/ttyUSB0").node is None
+    assert links.parse_link_spec("fc:COM3#1").target == "COM3"
+    assert links.parse_link_spec("canopen:slcan:socket://127.0.0.1:5000#3") == links.LinkSpec(
+        "canopen", "slcan:socket://127.0.0.1:5000", 3, {}, "canopen:slcan:socket://127.0.0.1:5000#3")
+    assert links.parse_link_spec(" sim ").scheme == "sim"
+
+
+def test_bad_link_specs_say_what_is_wrong():
+    with pytest.raises(LinkError, match="unknown scheme 'modbus'.*fc.*sim"):
+        links.open_link("modbus:/dev/ttyS0")
+    with pytest.raises(LinkError, match="address after '#' must be a whole number, got 'x'"):
+        links.parse_link_spec("fc:/dev/ttyUSB0#x")
+    with pytest.raises(LinkError, match="empty link"):
+        links.parse_link_spec("")
+    with pytest.raises(LinkError, match="unknown option 'bad'"):
+        links.open_link("fc:socket://127.0.0.1:1#1,bad=1")
+    with pytest.raises(LinkError, match="option baud='fast' is not valid"):
+        links.open_link("fc:socket://127.0.0.1:1#1,baud=fast")
+    with pytest.raises(LinkError, match="FC addresses are 1..126"):
+        links.open_link("fc:socket://127.0.0.1:1#127")
+    with pytest.raises(LinkError, match="cannot open socket://127.0.0.1:1"):
+        links.open_link("fc:socket://127.0.0.1:1#1")
+
+
+def test_sim_is_the_embedded_link_and_other_schemes_plug_in():
+    link = links.open_link("sim")
+    assert isinstance(link, EmbeddedLink) and link.virtual_time
+    link.close()
+    opened = []
+    links.register_link_scheme("test-loop", lambda spec: opened.append(spec) or EmbeddedLink(), "test-loop:X#N")
+    links.open_link("test-loop:abc#4,speed=2")
+    assert opened[0].target == "abc" and opened[0].node == 4 and opened[0].options == {"speed": "2"}
+    assert "test-loop:X#N" in links.scheme_help()
+
+
+def test_event_queue_numbers_events_and_forgets_what_the_master_saw():
+    q = EventQueue(limit=3)
+    for n in range(2):
+        q.put(LinkEvent("print", n, f"line {n}"))
+    first = q.after(0)
+    assert [seq for seq, _ in first["events"]] == [1, 2] and first["last"] == 2 and first["lost"] == 0
+    assert q.after(0)["events"][0][1]["text"] == "line 0"       # not acknowledged yet: sent again
+    assert q.after(2) == {"events": [], "last": 2, "lost": 0, "more": False, "epoch": q.epoch}
+    for n in range(2, 7):
+        q.put(LinkEvent("print", n, f"line {n}"))
+    overflow = q.after(2)                                        # 3..7 produced, only the newest 3 kept
+    assert [seq for seq, _ in overflow["events"]] == [5, 6, 7] and overflow["lost"] == 2
+    assert q.after(7, count=1)["last"] == 7
+    many = EventQueue()
+    for n in range(10):
+        many.put(LinkEvent("print", n))
+    batch = many.after(0, count=4)
+    assert batch["more"] and batch["last"] == 4
+    assert EventQueue().after(99)["last"] == 0                  # a master of an earlier drive starts over
+
+
+def local_link(drive, node=1):
+    """A RemoteLink whose transport hands the message bytes straight to the drive node (no wire)."""
+    return RemoteLink(drive.node(node).handle_message, f"local #{node}")
+
+
+def test_a_drive_node_answers_a_repeated_request_from_its_cache():
+    drive = VirtualDrive([1], clock="virtual")
+    node = drive.node(1)
+    request = wire.encode_request(Request("write_parameter", {"key": "19-00", "value": 5}, 1), session=9)
+    increment = wire.encode_request(Request("advance", {"ms": 10}, 2), session=9)
+    assert wire.decode_response(node.handle_message(request)).ok
+    node.handle_message(increment)
+    node.handle_message(increment)                       # repeated: answered, not applied again
+    assert node.service.controller.time_ms == 10
+    other_session = wire.encode_request(Request("advance", {"ms": 10}, 2), session=10)
+    node.handle_message(other_session)                   # same id, another master: a new request
+    assert node.service.controller.time_ms == 20
+    damaged = bytearray(request)
+    damaged[-1] ^= 1
+    answer = wire.decode_response(node.handle_message(bytes(damaged)))
+    assert not answer.ok and "damaged request" in answer.error and "checksum" in answer.error
+
+
+def test_remote_link_carries_requests_and_polls_events_in_order():
+    drive = VirtualDrive([1, 2], clock="virtual")
+    link = local_link(drive, 2)
+    assert link.identify()["node"] == 2 and link.virtual_time
+    seen = []
+    link.subscribe(lambda e: seen.append(e.text) if e.kind == "print" else None)
+    link.download(image('i = 0\nWHILE i < 100 DO\n  PRINT "n", i\n  i = i + 1\nENDWHILE\n').to_bytes())
+    link.start()
+    link.advance(200)
+    link.flush_events()
+    assert seen == [f"n{i}" for i in range(100)]
+    with pytest.raises(LinkError, match="no program 5"):
+        link.start(5)
+    link.close()
+
+
+def test_realtime_drive_paces_and_refuses_advance():
+    drive = VirtualDrive([1], clock="realtime")
+    drive.start()
+    try:
+        link = local_link(drive)
+        t0 = link.status().time_ms
+        time.sleep(0.3)
+        elapsed = link.status().time_ms - t0
+        assert 200 <= elapsed <= 450
+        with pytest.raises(LinkError, match="runs in real time"):
+            link.advance(10)
+        # requests from several threads at once: every answer belongs to its request
+        errors = []
+
+        def hammer(k):
+            try:
+                for i in range(30):
+                    link.write_parameter(f"19-0{k}", i)
+                    assert link.read_parameter(f"19-0{k}") == i
+            except Exception as exc:  # noqa: BLE001
+                errors.append(exc)
+
+        threads = [threading.Thread(target=hammer, args=(k,)) for k in range(4)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        assert errors == []
+    finally:
+        drive.stop()
+
+
+def test_link_timeout_stops_a_running_program_and_says_so():
+    drive = VirtualDrive([1], clock="realtime", timeout_s=0.2, timeout_reaction="stop")
+    drive.start()
+    try:
+        link = local_link(drive)
+        link.download(image("main:\nDELAY 10\nGOTO main\n").to_bytes())
+        link.start()
+        assert link.status().program_state == "running"
+        time.sleep(0.6)                                   # the master falls silent
+        messages = []
+        link.subscribe(lambda e: messages.append(e.text) if e.kind == "message" else None)
+        link.flush_events()
+        assert link.status().program_state == "break"
+        assert any("link timeout" in m and "program was stopped" in m for m in messages)
+    finally:
+        drive.stop()
+
+
+def test_install_program_saves_and_starts_it_once():
+    drive = VirtualDrive([3], clock="virtual")
+    drive.install_program(3, image('PRINT "up"\n'))
+    link = local_link(drive, 3)
+    out = []
+    link.subscribe(lambda e: out.append(e.text) if e.kind == "print" else None)
+    link.advance(5)
+    link.flush_events()
+    assert out == ["up"]
+    assert link.call("list_programs") == [{"number": 0, "name": "p", "autostart": False}]
+    with pytest.raises(ValueError, match="no node 4"):
+        drive.node(4)
