@@ -1,0 +1,185 @@
+"""The master's side of an FC bus: one serial port (any pyserial URL) shared by every address on it.
+
+`transact(telegram)` writes one telegram and waits for the slave's answer. A missing answer (timeout), a damaged
+one (BCC, length, parity errors the UART reports as garbage) or one that does not echo the request (another
+address, another PNU or sequence number — a late answer to an earlier try) is a failed try: the same telegram is
+sent again after a back-off (10 ms, doubling), and after `retries` repeats the bus reports `ConnectionLost`.
+Repeating the same telegram is safe: parameter writes are idempotent and extension frames are deduplicated by the
+slave (comms/chunks.py).
+
+Several links on one port (controllers 1 and 2 on one RS-485 cable) share one `FcBus`: `FcBus.open(url, …)` hands
+out the open bus of a URL with a reference count; the bus closes when its last link does.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import threading
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+from motiontool.comms.fc.telegram import (
+    LGE_PARAMETER,
+    MAX_TEXT,
+    Telegram,
+    TelegramError,
+    TelegramReader,
+    decode_address,
+    encode,
+    wire_time,
+)
+from motiontool.comms.protocol import ConnectionLost, LinkError
+
+READ_TIMEOUT_S = 0.01      # one port read; the answer's deadline is checked between reads
+SETTLE_S = 0.02            # after a damaged answer: time for whatever else is on its way before the next try
+DEFAULT_BAUD = 9600          # FC 300 8-32 factory setting
+PARITIES = {"E": "E", "EVEN": "E", "N": "N", "NONE": "N", "O": "O", "ODD": "O"}
+
+
+@dataclass
+class BusSettings:
+    url: str
+    baud: int = DEFAULT_BAUD
+    parity: str = "E"            # 8-33: even parity, 1 stop bit
+    stopbits: int = 1
+    timeout_s: float = 0.2       # answer time allowed beyond the telegrams' own time on the line
+    retries: int = 3
+    backoff_s: float = 0.01
+    faults: object = None        # comms/faults.py Faults of a fault-injecting port (tests)
+
+    def key(self) -> tuple:
+        return (self.url, self.baud, self.parity, self.stopbits, id(self.faults) if self.faults else None)
+
+
+@dataclass
+class BusStatistics:
+    telegrams: int = 0
+    repeats: int = 0
+    timeouts: int = 0
+    damaged: int = 0
+    mismatched: int = 0
+    problems: list[str] = field(default_factory=list)
+
+    def note(self, problem: str) -> None:
+        self.problems = (self.problems + [problem])[-20:]
+
+
+class FcBus:
+    _open: dict[tuple, FcBus] = {}
+    _open_lock = threading.Lock()
+
+    def __init__(self, settings: BusSettings, port=None):
+        self.settings = settings
+        self.port = port if port is not None else _open_port(settings)
+        self.lock = threading.RLock()
+        self.users = 0
+        self.closed = False
+        self.stats = BusStatistics()
+        self._reader = TelegramReader()
+
+    @classmethod
+    def open(cls, settings: BusSettings, wrap: Callable | None = None) -> FcBus:
+        """The shared bus of this port (opened on first use); `wrap` wraps a newly opened port (fault injection)."""
+        with cls._open_lock:
+            bus = cls._open.get(settings.key())
+            if bus is None or bus.closed:
+                port = _open_port(settings)
+                bus = cls(settings, wrap(port) if wrap else port)
+                cls._open[settings.key()] = bus
+            bus.users += 1
+            return bus
+
+    def release(self) -> None:
+        with self._open_lock:
+            self.users -= 1
+            if self.users <= 0:
+                self.close()
+
+    def close(self) -> None:
+        with self.lock:
+            if not self.closed:
+                self.closed = True
+                with contextlib.suppress(OSError):
+                    self.port.close()
+            if FcBus._open.get(self.settings.key()) is self:
+                del FcBus._open[self.settings.key()]
+
+    @property
+    def description(self) -> str:
+        s = self.settings
+        line = "" if "://" in s.url else f" {s.baud} baud"
+        return f"FC: {s.url}{line}"
+
+    # --- telegrams ------------------------------------------------------------------------------------
+    def transact(self, telegram: Telegram, matches: Callable[[Telegram], bool] | None = None) -> Telegram | None:
+        """Send a telegram and return the answer that echoes it (None for a broadcast: nobody answers)."""
+        raw = encode(telegram)
+        address, broadcast, _ = decode_address(telegram.adr)
+        reply_bytes = MAX_TEXT + 10 if telegram.text is not None else LGE_PARAMETER + 2
+        wait = self.settings.timeout_s + wire_time(len(raw) + reply_bytes, self.settings.baud)
+        problem = ""
+        with self.lock:
+            if self.closed:
+                raise ConnectionLost(f"{self.description} is closed")
+            for attempt in range(self.settings.retries + 1):
+                if attempt:
+                    self.stats.repeats += 1
+                    time.sleep(self.settings.backoff_s * 2 ** (attempt - 1))
+                try:
+                    self._write(raw)
+                    if broadcast:
+                        time.sleep(wire_time(len(raw), self.settings.baud))
+                        return None
+                    reply = self._read_reply(telegram, matches, wait)
+                except (OSError, ValueError) as exc:   # pyserial's SerialException is an OSError
+                    self.close()
+                    raise ConnectionLost(f"{self.description}: {exc}") from None
+                if isinstance(reply, Telegram):
+                    return reply
+                problem = reply
+                self.stats.note(problem)
+        raise ConnectionLost(f"no valid answer from address {address} on {self.description} after "
+                             f"{self.settings.retries + 1} tries ({problem})")
+
+    def _write(self, raw: bytes) -> None:
+        self.port.reset_input_buffer()
+        self._reader.buffer.clear()
+        self.port.write(raw)
+        self.stats.telegrams += 1
+
+    def _read_reply(self, request: Telegram, matches, wait: float) -> Telegram | str:
+        """The answer, or a text saying why there is none."""
+        deadline = time.monotonic() + wait
+        problem = "no answer (timeout)"
+        while True:
+            remaining = deadline - time.monotonic()
+            if remaining <= 0:
+                if problem.startswith("no answer"):
+                    self.stats.timeouts += 1
+                return problem
+            data = self.port.read(max(1, self.port.in_waiting))
+            if not data:
+                continue
+            for item in self._reader.feed(data):
+                if isinstance(item, TelegramError):
+                    self.stats.damaged += 1
+                    problem = f"damaged answer: {item}"
+                    deadline = min(deadline, time.monotonic() + SETTLE_S)  # the rest of it is garbage too
+                    continue
+                if item.adr != request.adr or (matches is not None and not matches(item)):
+                    self.stats.mismatched += 1
+                    problem = "an answer that does not echo the request"
+                    continue
+                return item
+
+
+def _open_port(settings: BusSettings):
+    import serial
+
+    try:
+        return serial.serial_for_url(settings.url, baudrate=settings.baud, bytesize=serial.EIGHTBITS,
+                                     parity=settings.parity, stopbits=settings.stopbits, timeout=READ_TIMEOUT_S,
+                                     write_timeout=2.0)
+    except (OSError, ValueError) as exc:
+        raise LinkError(f"cannot open {settings.url}: {exc}") from None

@@ -1,0 +1,192 @@
+"""FcLink: a controller on an FC bus (RS-485 or USB, or a serial-to-Ethernet converter), `--link fc:URL[#ADDRESS]`.
+
+Parameters travel as the public protocol's parameter telegrams (AK 1 read; AK 2/3 write a word/double word in RAM,
+by the parameter's data type), so they work with any FC 300 drive. Every other request, and the event polling,
+travels in the motiontool extension (comms/fc/extension.py) as chunked Link messages (comms/remote.py). Every write
+is verified: the drive's answer echoes the value it now holds, and a different value is an error.
+
+Options (`fc:URL#ADDRESS,KEY=VALUE,…`): baud (default 9600, FC 300 8-32), parity E|N|O (8-33, default E),
+stopbits 1|2, timeout (s an answer may take beyond its time on the line, default 0.2), retries (default 3),
+format 1|2 (address format; default 1 for addresses 1..31, 2 above), poll (event poll interval in s).
+"""
+
+from __future__ import annotations
+
+import random
+from typing import Any
+
+from motiontool.comms.chunks import MasterChannel
+from motiontool.comms.faults import FAULT_OPTIONS, FaultyPort, faults_from_options
+from motiontool.comms.fc.bus import DEFAULT_BAUD, PARITIES, BusSettings, FcBus
+from motiontool.comms.fc.extension import MAX_CHUNK, frame_telegram, is_frame, telegram_frame
+from motiontool.comms.fc.telegram import (
+    AK_NONE,
+    AK_READ,
+    AK_REFUSED,
+    AK_VALUE_DWORD,
+    AK_VALUE_WORD,
+    AK_WRITE_DWORD,
+    AK_WRITE_WORD,
+    FAULTS,
+    Telegram,
+    encode_address,
+    parameter,
+)
+from motiontool.comms.links import LinkSpec, register_link_scheme
+from motiontool.comms.protocol import ConnectionLost, LinkError, Request
+from motiontool.comms.remote import POLL_INTERVAL_S, RemoteLink
+from motiontool.paramdb import Parameter, ParameterError, database
+
+WORD_TYPES = ("Uint8", "Uint16", "Int8", "Int16")
+OPTIONS = {"baud", "parity", "stopbits", "timeout", "retries", "format", "poll"} | FAULT_OPTIONS
+
+
+def fault_text(code: int) -> str:
+    return FAULTS.get(code, f"fault {code}")
+
+
+class FcLink(RemoteLink):
+    kind = "fc"
+
+    def __init__(self, bus: FcBus, address: int = 1, fmt: int | None = None,
+                 poll_interval_s: float = POLL_INTERVAL_S):
+        self.bus = bus
+        self.address = address
+        self.adr = encode_address(address, fmt=fmt)
+        self.channel = MasterChannel(self._transfer, MAX_CHUNK, first_seq=random.getrandbits(16))
+        super().__init__(self.channel.exchange, f"{bus.description} #{address}", poll_interval_s)
+
+    # --- the extension ---------------------------------------------------------------------------------
+    def _transfer(self, frame):
+        reply = self.bus.transact(frame_telegram(self.adr, frame),
+                                  lambda t: (is_frame(t) and t.ind == frame.seq) or t.ak == AK_REFUSED)
+        if not is_frame(reply):
+            raise LinkError(f"controller {self.address} on {self.bus.description} offers parameter access only "
+                            f"(it refused the motiontool extension: {fault_text(reply.pwe & 0xFFFF)})")
+        return telegram_frame(reply)
+
+    # --- parameters: the public protocol ------------------------------------------------------------------
+    def request(self, request: Request) -> Any:
+        if request.op == "read_parameter":
+            return self._read(_parameter(request.args.get("key")))
+        if request.op == "write_parameter":
+            return self._write(_parameter(request.args.get("key")), request.args.get("value"))
+        return super().request(request)
+
+    def _transact_parameter(self, p: Parameter, ak: int, value: int = 0) -> Telegram:
+        if self._closed.is_set():
+            raise ConnectionLost("the link is closed")
+        try:
+            reply = self.bus.transact(parameter(self.adr, ak, p.index, value),
+                                      lambda t: t.text is None and t.pke is not None and t.pnu == p.index)
+        except ConnectionLost:
+            self._lost = True
+            raise
+        if reply.ak == AK_REFUSED:
+            code = reply.pwe & 0xFFFF
+            number = {0: 112, 1: 112, 2: 183}.get(code, 0)
+            raise LinkError(f"parameter {p.label}: the drive refused it ({fault_text(code)}, FC fault {code})",
+                            number)
+        return reply
+
+    def _read(self, p: Parameter) -> int:
+        reply = self._transact_parameter(p, AK_READ)
+        return _from_pwe(p, reply.pwe, reply.ak)
+
+    def _write(self, p: Parameter, value) -> None:
+        if p.read_only:
+            raise LinkError(f"error 112: Unknown param. ({p.label} is read-only)", 112)
+        try:
+            raw = int(value)
+            p.validate(raw if not p.conversion_index else raw * 10 ** p.conversion_index)
+        except (ParameterError, TypeError, ValueError) as exc:
+            raise LinkError(f"error 183: {exc}", 183) from None
+        word = to_pwe(p, raw)[0] == AK_VALUE_WORD
+        reply = self._transact_parameter(p, AK_WRITE_WORD if word else AK_WRITE_DWORD, raw)
+        echoed = _from_pwe(p, reply.pwe, reply.ak)
+        if echoed != raw:
+            raise LinkError(f"parameter {p.label}: wrote {raw}, the drive answered {echoed} (write not verified)")
+
+    def close(self) -> None:
+        super().close()
+        self.bus.release()
+
+
+def _parameter(key) -> Parameter:
+    try:
+        return database().get(key)
+    except ParameterError:
+        raise LinkError(f"error 112: Unknown param. (parameter {key})", 112) from None
+
+
+def _from_pwe(p: Parameter, pwe: int, ak: int) -> int:
+    """A PWE as the parameter's value: a word answer (AK 1) holds 16 bits, a double word (AK 2) 32; signed types
+    are two's complement."""
+    bits = 32 if ak == AK_VALUE_DWORD else 16
+    value = pwe & ((1 << bits) - 1)
+    if p.data_type.startswith("Int") and value >> (bits - 1):
+        value -= 1 << bits
+    return value
+
+
+def to_pwe(p: Parameter, value: int) -> tuple[int, int]:
+    """(AK of the answer, PWE) for a parameter's value as a drive sends it: a word for the word data types, a
+    double word for the others — and for a word parameter whose value does not fit 16 bits (a program may SET any
+    value, DG 7782-7795)."""
+    signed = p.data_type.startswith("Int")
+    if p.data_type in WORD_TYPES and (-0x8000 <= value <= 0x7FFF if signed else 0 <= value <= 0xFFFF):
+        return AK_VALUE_WORD, value & 0xFFFF
+    return AK_VALUE_DWORD, value & 0xFFFFFFFF
+
+
+# --- opening and scanning ------------------------------------------------------------------------------------
+def bus_settings(spec: LinkSpec) -> BusSettings:
+    parity = spec.option("parity", "E", str).upper()
+    if parity not in PARITIES:
+        raise LinkError(f"link '{spec.text}': parity {parity!r}: choose E, N or O")
+    if not spec.target:
+        raise LinkError(f"link '{spec.text}': give the port, e.g. fc:/dev/ttyUSB0#1 or fc:socket://host:port#1")
+    return BusSettings(spec.target, spec.option("baud", DEFAULT_BAUD, int), PARITIES[parity],
+                       spec.option("stopbits", 1, int), spec.option("timeout", 0.2, float),
+                       spec.option("retries", 3, int))
+
+
+def open_fc(spec: LinkSpec) -> FcLink:
+    spec.check_options(OPTIONS)
+    address = spec.node if spec.node is not None else 1
+    fmt = spec.option("format", None, int)
+    try:
+        encode_address(address, fmt=fmt)
+    except ValueError as exc:
+        raise LinkError(f"link '{spec.text}': {exc}") from None
+    settings = bus_settings(spec)
+    faults = faults_from_options(spec)
+    if faults.active:  # a spoilt line is a different bus from the clean one on the same port
+        settings.faults = faults
+    bus = FcBus.open(settings, (lambda port: FaultyPort(port, faults)) if faults.active else None)
+    return FcLink(bus, address, fmt, spec.option("poll", POLL_INTERVAL_S, float))
+
+
+def scan(bus: FcBus, addresses, fmt: int | None = None) -> list[int]:
+    """The addresses in `addresses` that answer (a "no command" telegram each, one try, short timeout)."""
+    found = []
+    saved = bus.settings.retries, bus.settings.timeout_s
+    bus.settings.retries, bus.settings.timeout_s = 0, min(bus.settings.timeout_s, 0.05)
+    try:
+        for address in addresses:
+            adr = encode_address(address, fmt=fmt)
+            try:
+                bus.transact(parameter(adr, AK_NONE, 0))
+            except ConnectionLost:
+                if bus.closed:
+                    raise
+                continue
+            found.append(address)
+    finally:
+        bus.settings.retries, bus.settings.timeout_s = saved
+    return found
+
+
+register_link_scheme("fc", open_fc, "fc:URL[#ADDRESS][,baud=N,parity=E|N|O,timeout=S,retries=N]",
+                     "FC protocol over RS-485/USB or any pyserial URL, e.g. fc:/dev/ttyUSB0#1, "
+                     "fc:socket://127.0.0.1:4001#2")
