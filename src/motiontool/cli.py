@@ -24,6 +24,10 @@ def _cmd_params(args: argparse.Namespace) -> int:
     if args.find:
         found = set(db.find(args.find))
         rows = [p for p in rows if p in found]
+    if args.link or args.get or args.set:  # live values from a controller
+        from motiontool.headless import params_on_link
+
+        return params_on_link(args.link, args.get, args.set, rows)
     for parameter in rows:
         print(parameter.format_line())
     return 0 if rows else 1
@@ -53,7 +57,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
     options = RunOptions(seconds=args.seconds, settings=args.set, inputs=args.input, include_dirs=args.include,
                          trace=args.trace, signals=[s for s in args.signals.split(",") if s.strip()],
                          trace_interval_ms=args.interval, record=args.record, realtime=args.realtime,
-                         config=args.config, nodes=args.node, master_node=args.master_node)
+                         config=args.config, nodes=args.node, master_node=args.master_node, link=args.link)
     if args.master_node is not None and not args.node:
         print("motiontool run: --master-node needs --node (several controllers)", file=sys.stderr)
         return 1
@@ -61,6 +65,12 @@ def _cmd_run(args: argparse.Namespace) -> int:
         print("motiontool run: give FILE.m, or --node ID:PROGRAM.m for several controllers", file=sys.stderr)
         return 1
     return run_program(args.file, options)
+
+
+def _add_link_option(p: argparse.ArgumentParser, note: str) -> None:
+    p.add_argument("--link", metavar="SPEC", help="the controller to talk to: sim (the embedded simulator, default) "
+                   "or fc:URL[#ADDRESS][,baud=N,…], URL any pyserial URL (/dev/ttyUSB0, COM3, socket://HOST:PORT); "
+                   f"see docs/link-protocol.md; {note}")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -77,6 +87,10 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("params", help="list MCO 305 parameters, one per line")
     p.add_argument("--find", metavar="TEXT", help="only parameters whose number, name or text contains TEXT")
     p.add_argument("--group", metavar="PREFIX", help="only parameters of this group, e.g. 32-6")
+    p.add_argument("--get", action="append", default=[], metavar="KEY", help="read a parameter from the controller")
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                   help="write a parameter on the controller (raw value) and read it back")
+    _add_link_option(p, "with --link alone: read the live value of every listed parameter")
     p.set_defaults(func=_cmd_params)
 
     p = sub.add_parser("check", help="syntax-check APOSS programs and DPL programs (FILE.dpl) (GCC-style diagnostics)")
@@ -120,7 +134,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--interval", type=int, default=1, metavar="MS", help="trace interval (default 1 ms)")
     p.add_argument("--record", type=Path, metavar="OUT.csv", help="write every TESTSETP recording as CSV")
     p.add_argument("--realtime", action="store_true", help="pace virtual time at real time")
+    _add_link_option(p, "--seconds then counts the controller's own time")
     p.set_defaults(func=_cmd_run)
+
+    from motiontool.comms.drive.command import add_parser as add_drive_parser
+
+    add_drive_parser(sub)
 
     from motiontool.cameditor import camcli
 

@@ -36,6 +36,7 @@ class RunOptions:
     config: Path | None = None                              # .zbc/.cnf loaded before the start
     nodes: list[str] = field(default_factory=list)          # ID:PROGRAM.m: several controllers (run_nodes)
     master_node: int | None = None                          # whose PULSVEL is everyone's master (default lowest)
+    link: str | None = None                                 # --link SPEC (comms/links.py); None = the simulator
 
 
 
@@ -86,9 +87,11 @@ def load_config(options, err):
 
 
 
-def prepare_link(link, config, settings: list[str], inputs: list[str], options, err, node_ids: bool = False) -> bool:
+def prepare_link(link, config, settings: list[str], inputs: list[str], options, err, node_ids: bool = False,
+                 time_base: int = 0) -> bool:
     """Load --config, then --set and --input into one controller before its program starts; False after
-    printing why on err. ``node_ids``: the options were given as [ID:]… (several controllers)."""
+    printing why on err. ``node_ids``: the options were given as [ID:]… (several controllers); ``time_base``: the
+    controller's time when the run starts (input times count from there)."""
     form = "[ID:]" if node_ids else ""
     if config is not None:
         try:
@@ -112,7 +115,8 @@ def prepare_link(link, config, settings: list[str], inputs: list[str], options, 
         if not m:
             print(f"motiontool run: --input needs {form}N=V or {form}N=V@T (ms), got '{spec}'", file=err)
             return False
-        link.call("schedule_input", number=int(m.group(1)), value=int(m.group(2)), time_ms=int(m.group(3) or 0))
+        link.call("schedule_input", number=int(m.group(1)), value=int(m.group(2)),
+                  time_ms=time_base + int(m.group(3) or 0))
     return True
 
 
@@ -123,7 +127,11 @@ def run_program(path: Path | None, options: RunOptions, out: TextIO = sys.stdout
     loaded, config = load_config(options, err)
     if image is None or not loaded:
         return EXIT_COMPILE
-    link = EmbeddedLink(realtime_factor=1.0 if options.realtime else None)
+    try:
+        link = open_run_link(options.link, options.realtime)
+    except LinkError as exc:
+        print(f"motiontool run: {exc}", file=err)
+        return EXIT_CONTROLLER
     state = {"error": False}
     trace_rows: list[list] = []
     output = PrintOutput(out)
@@ -139,31 +147,23 @@ def run_program(path: Path | None, options: RunOptions, out: TextIO = sys.stdout
         elif event.kind == "samples":
             for t, values in zip(event.data["time_ms"], event.data["values"], strict=True):
                 trace_rows.append([t, *values])
+        elif event.kind in ("message", "connection"):
+            print(f"motiontool run: {event.text}", file=err)
 
     link.subscribe(on_event)
     try:
-        if not prepare_link(link, config, options.settings, options.inputs, options, err):
+        time_base = link.status().time_ms
+        if not prepare_link(link, config, options.settings, options.inputs, options, err, time_base=time_base):
             return EXIT_COMPILE
         if options.trace:
             link.call("stream", signals=options.signals, interval_ms=options.trace_interval_ms)
         link.download(image.to_bytes(), name=image.name)
         link.start()
-        total = int(options.seconds * 1000)
-        step = 50
-        elapsed = 0
-        while elapsed < total:
-            n = min(step, total - elapsed)
-            if options.realtime:
-                import time
-                time.sleep(n / 1000)
-            else:
-                link.advance(n)
-            elapsed += n
-            if link.status().program_state != "running" or output.closed:
-                break
+        run_until_stopped([link], options, time_base, output)
         output.flush()
         if options.trace:
             link.call("stream", signals=[], interval_ms=1)
+            link.flush_events()
             _write_csv(options.trace, ["time_ms", *options.signals], trace_rows)
         if options.record:
             _write_recordings(link, options.record)
@@ -175,6 +175,47 @@ def run_program(path: Path | None, options: RunOptions, out: TextIO = sys.stdout
     return EXIT_CONTROLLER if state["error"] else EXIT_OK
 
 
+def open_run_link(spec: str | None, realtime: bool = False, node: int | None = None):
+    """The controller of a run: the embedded simulator (virtual time unless `realtime`) or `--link SPEC`, with
+    `node` as its address when given."""
+    from dataclasses import replace
+
+    from motiontool.comms.links import open_link, parse_link_spec
+
+    parsed = parse_link_spec(spec or "sim")
+    if parsed.scheme == "sim" and not parsed.options:
+        return EmbeddedLink(realtime_factor=1.0 if realtime else None)
+    return open_link(replace(parsed, node=node) if node is not None else parsed)
+
+
+def run_until_stopped(links: list, options: RunOptions, time_base: int, output: PrintOutput) -> None:
+    """Controller time runs until every program has stopped or --seconds are up: the first link's `advance`
+    moves a virtual clock (all nodes of one simulator share it), paced at real time with --realtime; a clock that
+    runs by itself (a drive) is watched in 50 ms steps. Events are fetched after every step, before the status; a
+    closed stdout ends the run after the step."""
+    import time
+
+    total = int(options.seconds * 1000)
+    lead = links[0]
+    virtual = lead.virtual_time
+    step, elapsed = 50, 0
+    started = time.monotonic()
+    while elapsed < total:
+        n = min(step, total - elapsed)
+        if virtual:
+            lead.advance(n)
+            elapsed += n
+            if options.realtime:  # pace virtual time at real time
+                time.sleep(max(0.0, elapsed / 1000 - (time.monotonic() - started)))
+        else:
+            time.sleep(max(0.0, (elapsed + n) / 1000 - (time.monotonic() - started)))
+            elapsed = max(elapsed + 1, lead.status().time_ms - time_base)
+        for link in links:
+            link.flush_events()
+        if output.closed or all(link.status().program_state != "running" for link in links):
+            break
+
+
 def _write_csv(path: Path, header: list[str], rows: list[list]) -> None:
     from motiontool.fileio import atomic_write_text
 
@@ -182,7 +223,7 @@ def _write_csv(path: Path, header: list[str], rows: list[list]) -> None:
     atomic_write_text(path, "\n".join(lines) + "\n")
 
 
-def _write_recordings(link: EmbeddedLink, path: Path) -> None:
+def _write_recordings(link, path: Path) -> None:
     """Every TESTSETP recording as CSV: time_ms + one named column per recorded index; several
     recordings go to PATH, PATH-2.csv, … in the order they were started."""
     recordings = link.call("list_recordings")
@@ -244,7 +285,6 @@ def run_nodes(path: Path | None, options: RunOptions, out: TextIO = sys.stdout, 
     """Several simulated controllers in lockstep (comms/bus.py, kernel/simulation.py): FILE.m on node 1 and every
     --node ID:PROGRAM.m; the virtual master (PULSVEL) of --master-node (default the lowest id) is the master input
     of all the others. stdout: every PRINT as `N: text`, stderr: controller errors as `N: error …`."""
-    from motiontool.comms.bus import EmbeddedBus
 
     try:
         programs = _node_programs(path, options.nodes)
@@ -259,10 +299,13 @@ def run_nodes(path: Path | None, options: RunOptions, out: TextIO = sys.stdout, 
     if None in images.values() or not loaded:
         return EXIT_COMPILE
     try:
-        bus = EmbeddedBus(nodes, master_node=options.master_node if options.master_node is not None else nodes[0])
+        links, close = _node_links(nodes, options)
     except ValueError as exc:
         print(f"motiontool run: --master-node: {exc}", file=err)
         return EXIT_COMPILE
+    except LinkError as exc:
+        print(f"motiontool run: {exc}", file=err)
+        return EXIT_CONTROLLER
     failed: set[int] = set()
     traces: dict[int, dict[int, list]] = {n: {} for n in nodes}
     output = PrintOutput(out)
@@ -279,24 +322,29 @@ def run_nodes(path: Path | None, options: RunOptions, out: TextIO = sys.stdout, 
             elif event.kind == "samples":
                 for t, values in zip(event.data["time_ms"], event.data["values"], strict=True):
                     traces[n][t] = values
+            elif event.kind in ("message", "connection"):
+                print(f"{n}: motiontool run: {event.text}", file=err)
         return on_event
 
     try:
+        time_base = links[nodes[0]].status().time_ms
         for n in nodes:
-            link = bus.link(n)
+            link = links[n]
             link.subscribe(listener(n))
-            if not prepare_link(link, config, settings[n], inputs[n], options, err, node_ids=True):
+            if not prepare_link(link, config, settings[n], inputs[n], options, err, node_ids=True,
+                                time_base=time_base):
                 return EXIT_COMPILE
             if options.trace:
                 link.call("stream", signals=options.signals, interval_ms=options.trace_interval_ms)
         for n in nodes:
-            bus.link(n).download(images[n].to_bytes(), name=images[n].name)
-            bus.link(n).start()
-        _advance_all(bus, nodes, options, output)
+            links[n].download(images[n].to_bytes(), name=images[n].name)
+            links[n].start()
+        run_until_stopped([links[n] for n in nodes], options, time_base, output)
         output.flush()
         if options.trace:
             for n in nodes:
-                bus.link(n).call("stream", signals=[], interval_ms=1)
+                links[n].call("stream", signals=[], interval_ms=1)
+                links[n].flush_events()
             times = sorted(set().union(*(traces[n] for n in nodes)))
             header = ["time_ms", *(f"{n}:{s}" for n in nodes for s in options.signals)]
             empty = [""] * len(options.signals)
@@ -305,27 +353,74 @@ def run_nodes(path: Path | None, options: RunOptions, out: TextIO = sys.stdout, 
         if options.record:
             for n in nodes:
                 target = options.record.with_name(f"{options.record.stem}-node{n}{options.record.suffix}")
-                _write_recordings(bus.link(n), target)
+                _write_recordings(links[n], target)
     except LinkError as exc:
         print(f"motiontool run: {exc}", file=err)
         return EXIT_CONTROLLER
     finally:
-        bus.close()
+        close()
     return EXIT_CONTROLLER if failed else EXIT_OK
 
 
-def _advance_all(bus, nodes: list[int], options: RunOptions, output: PrintOutput) -> None:
-    """Virtual time for all nodes together until every program has stopped or the time is up."""
-    import time
+def _node_links(nodes: list[int], options: RunOptions):
+    """({node: link}, close) for a run on several controllers: one embedded bus, or the --link interface with each
+    node id as the address."""
+    from motiontool.comms.bus import EmbeddedBus
+    from motiontool.comms.links import parse_link_spec
 
-    total = int(options.seconds * 1000)
-    step, elapsed = 50, 0
-    started = time.monotonic()
-    while elapsed < total:
-        n = min(step, total - elapsed)
-        bus.advance(n)
-        elapsed += n
-        if options.realtime:  # pace virtual time at real time
-            time.sleep(max(0.0, elapsed / 1000 - (time.monotonic() - started)))
-        if output.closed or all(bus.link(node).status().program_state != "running" for node in nodes):
-            break
+    if parse_link_spec(options.link or "sim").scheme == "sim":
+        bus = EmbeddedBus(nodes, master_node=options.master_node if options.master_node is not None else nodes[0])
+        return {n: bus.link(n) for n in nodes}, bus.close
+    if options.master_node is not None:
+        raise ValueError("the drive wires its master signal (motiontool drive --master-node), not the run")
+    links: dict = {}
+    try:
+        for n in nodes:
+            links[n] = open_run_link(options.link, node=n)
+    except LinkError:
+        for link in links.values():
+            link.close()
+        raise
+    return links, lambda: [link.close() for link in links.values()]
+
+
+def params_on_link(spec: str | None, gets: list[str], sets: list[str], rows, out: TextIO = sys.stdout,
+                   err: TextIO = sys.stderr) -> int:
+    """`motiontool params --link SPEC [--set KEY=VALUE]… [--get KEY]…`: writes first (each read back), then reads;
+    without --get/--set every parameter of `rows` is read. One line per parameter: `32-60 KPROP 50` (the raw
+    value the link carries). Exit 0, or 1 after the first refusal (stderr names the parameter)."""
+    from motiontool.paramdb import ParameterError, database
+
+    db = database()
+    try:
+        link = open_run_link(spec)
+    except LinkError as exc:
+        print(f"motiontool params: {exc}", file=err)
+        return 1
+    try:
+        for setting in sets:
+            key, _, value = setting.partition("=")
+            try:
+                p = db.get(key.strip())
+                number = int(value, 0)
+            except ParameterError as exc:
+                raise LinkError(f"--set {setting}: {exc}") from None
+            except ValueError:
+                raise LinkError(f"--set needs KEY=VALUE with a whole number, got '{setting}'") from None
+            link.write_parameter(p.number, number)
+            print(f"{p.label} {link.read_parameter(p.number)}", file=out)
+        for key in gets:
+            try:
+                p = db.get(key.strip())
+            except ParameterError as exc:
+                raise LinkError(f"--get {key}: {exc}") from None
+            print(f"{p.label} {link.read_parameter(p.number)}", file=out)
+        if not gets and not sets:
+            for p in rows:
+                print(f"{p.label} {link.read_parameter(p.number)}", file=out)
+    except LinkError as exc:
+        print(f"motiontool params: {exc}", file=err)
+        return 1
+    finally:
+        link.close()
+    return 0

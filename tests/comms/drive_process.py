@@ -1,0 +1,72 @@
+"""`motiontool drive` as a separate process for end-to-end tests: started, its `listening on URL` line read, and
+stopped with SIGTERM (which must end it cleanly, exit status 0)."""
+
+from __future__ import annotations
+
+import select
+import signal
+import subprocess
+import sys
+import time
+from contextlib import contextmanager
+
+
+class DriveProcess:
+    def __init__(self, *args: str, listen: str = "fc:socket://127.0.0.1:0"):
+        self.args = ["drive", "--listen", listen, *args]
+        self.proc = subprocess.Popen([sys.executable, "-m", "motiontool", *self.args], stdout=subprocess.PIPE,
+                                     stderr=subprocess.PIPE, text=True)
+        self._url: str | None = None
+
+    @property
+    def url(self) -> str:
+        if self._url is None:
+            deadline = time.monotonic() + 60
+            while time.monotonic() < deadline:
+                if select.select([self.proc.stdout], [], [], 0.5)[0]:
+                    line = self.proc.stdout.readline()
+                    assert line.startswith("listening on "), (line, self.proc.stderr.read())
+                    self._url = line.split(" ", 2)[2].strip()
+                    break
+                assert self.proc.poll() is None, self.proc.stderr.read()
+            else:
+                raise AssertionError("the drive did not say where it listens within 60 s")
+        return self._url
+
+    def stop(self) -> tuple[int, str, str]:
+        if self.proc.poll() is None:
+            self.proc.send_signal(signal.SIGTERM)
+        try:
+            out, err = self.proc.communicate(timeout=20)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            out, err = self.proc.communicate()
+        return self.proc.returncode, out, err
+
+
+@contextmanager
+def drive_process(*args: str, listen: str = "fc:socket://127.0.0.1:0"):
+    drive = DriveProcess(*args, listen=listen)
+    try:
+        assert drive.url
+        yield drive
+    finally:
+        code, _, err = drive.stop()
+        assert code == 0, f"the drive ended with {code}: {err}"
+
+
+class DrivePool:
+    """Fresh drives, one started ahead while the previous one is in use (a drive takes a second to start)."""
+
+    def __init__(self, *args: str):
+        self.args = args
+        self.spare: DriveProcess | None = None
+
+    def take(self) -> DriveProcess:
+        drive = self.spare or DriveProcess(*self.args)
+        self.spare = DriveProcess(*self.args)
+        return drive
+
+    def close(self) -> None:
+        if self.spare is not None:
+            self.spare.stop()
