@@ -120,6 +120,17 @@ class KernelCore:
         self.period_ns = self.period_us * 1000
 
     @property
+    def time_ms(self) -> float:
+        return self.time_ns / 1_000_000
+
+    def get_parameter(self, menu: int, par: int) -> int:
+        """#menu.par (0 for anything not modelled)."""
+        return self.params.read((menu, par))
+
+    def set_parameter(self, menu: int, par: int, value: int) -> None:
+        self.params.write((menu, par), value)
+
+    @property
     def reference_on(self) -> int:
         """#1.11: the drive is healthy, enabled and running (L5078-5080)."""
         return int(self.drive_enabled and not self.trip)
@@ -127,6 +138,8 @@ class KernelCore:
     def _install_virtual_parameters(self) -> None:
         p = self.params
         p.readers[(1, 11)] = lambda: self.reference_on
+        p.writers[(1, 11)] = lambda v: setattr(self, "drive_enabled", bool(v))   # the run command (A45)
+        p.readers[(3, 48)] = lambda: 1          # encoder initialised (L434-437): the simulated one is at once
         p.readers[(90, 1)] = lambda: self.fb.position
         p.readers[(90, 3)] = lambda: self.ref.position
         p.readers[(90, 18)] = lambda: self.fb.freeze_flag

@@ -23,7 +23,7 @@ class PlantConfig:
     coast_tau_ms: float = 300.0     # how a tripped or disabled drive's motor runs down
     encoder_cpr: int = 65536        # counts per revolution of the drive encoder (4096 ppr quadrature = 16384)
     start_revolutions: float = 0.0  # motor position at power-up
-    marker_angle: float | None = None   # the encoder's marker (index) pulse at this fraction of a turn, or None
+    marker_angle: float | None = 0.0    # the encoder's marker (index) pulse at this fraction of a turn, or None
 
     @classmethod
     def from_mapping(cls, values: dict) -> PlantConfig:

@@ -29,9 +29,11 @@ class EmbeddedLink(Link):
     kind = "embedded"
 
     def __init__(self, plant: PlantConfig | None = None, realtime_factor: float | None = None,
-                 master: MasterConfig | None = None):
+                 master: MasterConfig | None = None, *, service=None):
+        """`service` replaces the MCO 305 (e.g. comms.apc_service.ApcService for an APC); it needs
+        handle(request), tick() (one ms), listeners and controller.time_ms."""
         super().__init__()
-        self.service = ControllerService(Controller(plant, master=master))
+        self.service = service or ControllerService(Controller(plant, master=master))
         self.service.listeners.append(self._publish)
         self.realtime_factor = realtime_factor
         self._requests: queue.Queue = queue.Queue()

@@ -1,0 +1,212 @@
+"""The controller side of the link protocol for the APC (Unidrive SP + SM-Applications): the same requests as
+the MCO 305's ControllerService (docs/link-protocol.md), answered by an `ApcDrive` — or every drive of a CTSync
+line, one service per node — so the scope, the watch and the array editor work unchanged (docs/apc.md "Link").
+
+* `identify` names the kind: ``{"product", "kind": "APC", "firmware", "protocol", "pos_period_us"}``.
+* `read_parameter` / signals: an APC read parameter by number (48), "[48]", "1048" (raw) or alias
+  ("APC_FB_POS"), or a drive parameter written with a dot ("18.11", "#1.06"); `write_parameter` writes drive
+  parameters (the read parameters change only through the APC calls).
+* `status`: apos = [48], cpos = [142] (the position loop's reference), axend = [120]; error = 90.49.
+* Arrays belong to the DPL program: a program host (the DPL runtime) fills `arrays` with (name, list) pairs.
+* Programs: the ops `download`, `start`, `break`, `continue`, `list_programs`, `delete_program`,
+  `set_autostart`, `power_on`, `set_breakpoints`, `step`, `read_variables`, `write_variable` go to the attached
+  program host (`ApcService.program`, any object with `op_<name>` methods); without one they are refused.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+from motiontool.apc.drive import ApcDrive
+from motiontool.apc.readpars import parameter_number
+from motiontool.comms.embedded import EmbeddedLink
+from motiontool.comms.protocol import OPERATIONS, PROTOCOL_VERSION, LinkEvent, Request, Response, Status
+
+PROGRAM_OPS = ("download", "start", "break", "continue", "list_programs", "delete_program", "set_autostart",
+               "power_on", "set_breakpoints", "step", "read_variables", "write_variable", "restore_arrays",
+               "list_recordings", "upload_recording")
+
+
+def apc_reader(drive: ApcDrive, key) -> Callable[[], int]:
+    """A reader for a signal or parameter key: drive parameter if it has a dot, else an APC read parameter."""
+    text = str(key).strip()
+    if "." in text:
+        drive.params.read(text)                       # refuse a bad key now
+        return lambda: drive.params.read(text)
+    number = parameter_number(key)
+    if drive.read_parameter(number) is None:
+        raise ValueError(f"no APC read parameter [{number}]")
+    return lambda: drive.read_parameter(number)[0]
+
+
+class ApcService:
+    """Executes link requests on one APC drive (module docstring)."""
+
+    kind = "APC"
+
+    def __init__(self, drive: ApcDrive | None = None, *, advance: Callable[[], None] | None = None):
+        """`advance` runs one POS sample of the whole machine (a CTSync line ticks every node); by default the
+        drive's own tick."""
+        self.drive = drive or ApcDrive()
+        self._advance = advance or self.drive.tick
+        self.listeners: list[Callable[[LinkEvent], None]] = []
+        self.program: Any = None                      # the DPL program host, if any
+        self.arrays: list[tuple[str, list]] = []      # the program's arrays, in declaration order
+        self.errors: list[dict] = []
+        self.time_ms = 0
+        self._us = 0
+        self.stream_signals: list[tuple[str, Callable[[], int]]] = []
+        self.stream_interval = 0
+        self._stream_times: list[int] = []
+        self._stream_buffer: list[list[int]] = []
+        self.drive.listeners.append(self._drive_event)
+
+    @property
+    def controller(self) -> ApcDrive:
+        return self.drive
+
+    def _drive_event(self, kind: str, details: dict) -> None:
+        number = details.get("code", 0) if kind == "error" else 81 if details.get("trip") == "Tr81" else 44
+        self.errors.append({"time_ms": self.time_ms, "kind": kind, "number": number, "text": details.get("text", "")})
+        self._publish(LinkEvent("error", self.time_ms, details.get("text", ""), number))
+
+    def _publish(self, event: LinkEvent) -> None:
+        for listener in self.listeners:
+            listener(event)
+
+    # --- time ------------------------------------------------------------------------------------------------------
+    def tick(self) -> None:
+        """One millisecond: as many POS samples as fall into it (four at 250 µs, one every 2nd ms at 2 ms)."""
+        self.time_ms += 1
+        self._us += 1000
+        period = self.drive.period_us
+        while self._us >= period:
+            self._us -= period
+            self._advance()
+        if self.stream_signals and self.time_ms % self.stream_interval == 0:
+            self._stream_times.append(self.time_ms)
+            self._stream_buffer.append([read() for _, read in self.stream_signals])
+            if len(self._stream_times) >= max(1, 20 // self.stream_interval):
+                self.flush_stream()
+
+    def flush_stream(self) -> None:
+        if self._stream_times:
+            data = {"signals": [n for n, _ in self.stream_signals], "time_ms": self._stream_times,
+                    "values": self._stream_buffer}
+            self._stream_times, self._stream_buffer = [], []
+            self._publish(LinkEvent("samples", self.time_ms, data=data))
+
+    # --- requests --------------------------------------------------------------------------------------------------
+    def handle(self, request: Request) -> Response:
+        if request.op not in OPERATIONS:
+            return Response(request.id, False, error=f"unknown operation '{request.op}'")
+        try:
+            if request.op in PROGRAM_OPS and not hasattr(self, "op_" + request.op):
+                if self.program is None or not hasattr(self.program, "op_" + request.op):
+                    raise ValueError(f"'{request.op}': the APC controller runs DPL programs and none is attached")
+                return Response(request.id, True, getattr(self.program, "op_" + request.op)(**request.args))
+            return Response(request.id, True, getattr(self, "op_" + request.op)(**request.args))
+        except AttributeError:
+            return Response(request.id, False, error=f"'{request.op}' is not available on the APC controller")
+        except (ValueError, KeyError, TypeError, IndexError, RuntimeError) as exc:
+            return Response(request.id, False, error=str(exc))
+        except Exception as exc:  # noqa: BLE001 - a request never takes the controller down
+            return Response(request.id, False, error=f"internal error: {type(exc).__name__}: {exc}")
+
+    def op_identify(self) -> dict:
+        from motiontool import __version__
+
+        return {"product": "Unidrive SP + SM-Applications APC (simulated)", "kind": self.kind,
+                "firmware": f"motiontool {__version__}", "protocol": PROTOCOL_VERSION,
+                "pos_period_us": self.drive.period_us}
+
+    def op_status(self) -> dict:
+        d = self.drive
+        program = self.program.status() if self.program is not None and hasattr(self.program, "status") else {}
+        return Status(self.time_ms, program.get("program_state", "idle"), program.get("program", ""),
+                      d.error_id, program.get("line"), d.fb.integrated, d.loop.position_ref,
+                      d.pg.flags() & 1).to_dict()
+
+    def op_read_parameter(self, key) -> int:
+        return apc_reader(self.drive, key)()
+
+    def op_write_parameter(self, key, value) -> None:
+        text = str(key).strip()
+        if "." not in text:
+            raise ValueError(f"{key!r}: APC read parameters change only through the APC calls; write drive "
+                             f"parameters as menu.parameter (e.g. 18.11)")
+        self.drive.params.write(text, int(value))
+
+    def op_list_arrays(self) -> list[dict]:
+        return [{"index": i, "name": name, "size": len(data)} for i, (name, data) in enumerate(self.arrays)]
+
+    def _array(self, index) -> list:
+        if not isinstance(index, int) or not 0 <= index < len(self.arrays):
+            raise ValueError(f"no array {index} (the program has {len(self.arrays)})")
+        return self.arrays[index][1]
+
+    def op_read_array(self, index) -> list:
+        return list(self._array(index))
+
+    def op_write_array(self, index, values) -> None:
+        data = self._array(index)
+        if len(values) > len(data):
+            raise ValueError(f"{len(values)} values for {self.arrays[index][0]}[{len(data)}]")
+        data[:len(values)] = [int(v) for v in values]
+
+    def op_stream(self, signals, interval_ms=1) -> None:
+        self.flush_stream()
+        self.stream_signals = [(str(name), apc_reader(self.drive, name)) for name in signals]
+        self.stream_interval = max(1, int(interval_ms))
+
+    def op_read_signals(self, signals) -> list:
+        return [apc_reader(self.drive, name)() for name in signals]
+
+    def op_set_input(self, number, value) -> None:
+        """DIGIN0 (T10) is the freeze input of the SM-Applications (L629-643): a rising edge freezes the
+        reference and feedback counters now."""
+        if int(number) != 0:
+            raise ValueError(f"the simulated SM-Applications has the freeze input DIGIN0 only (got {number})")
+        if value:
+            self.op_schedule_input(0, 1, self.time_ms)
+
+    def op_schedule_input(self, number, value, time_ms) -> None:
+        if int(number) != 0 or not value:
+            raise ValueError("schedule DIGIN0 (the freeze input) rising: number 0, value 1")
+        for side in ("reference", "feedback"):
+            self.drive.schedule(side, "freeze", float(time_ms) * 1000)
+
+    def op_error_history(self) -> list[dict]:
+        return [dict(e) for e in self.errors]
+
+    def op_clear_error(self) -> None:
+        """A drive reset: the trip and 90.49 clear."""
+        self.drive.trip = ""
+        self.drive.error_id = 0
+
+    def op_reset(self, what) -> None:
+        if what not in ("parameters", "user", "arrays", "all"):
+            raise ValueError(f"reset {what!r}: choose one of parameters, user, arrays, all")
+        if what in ("parameters", "all"):
+            from motiontool.apc.driveparams import DEFAULTS
+
+            self.drive.params.values = dict(DEFAULTS)
+        if what in ("user", "all"):
+            for key in [k for k in self.drive.params.values if 18 <= k[0] <= 20]:
+                del self.drive.params.values[key]
+        if what in ("arrays", "all"):
+            for _, data in self.arrays:
+                data[:] = [0] * len(data)
+
+    def op_advance(self, ms) -> None:
+        for _ in range(int(ms)):
+            self.tick()
+
+    def op_recording_status(self) -> None:
+        return None
+
+
+def embedded_apc_link(drive: ApcDrive | None = None, *, realtime_factor: float | None = None) -> EmbeddedLink:
+    """An embedded link to a simulated APC: synchronous (advance) by default, paced with `realtime_factor`."""
+    return EmbeddedLink(realtime_factor=realtime_factor, service=ApcService(drive))

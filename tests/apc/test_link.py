@@ -1,0 +1,78 @@
+"""The APC answers the same Link requests as the MCO 305 (issue 19 item 9, docs/link-protocol.md)."""
+
+import pytest
+
+from motiontool.apc import ApcDrive, CTSyncLine
+from motiontool.comms.apc_service import ApcService, embedded_apc_link
+from motiontool.comms.protocol import LinkError
+
+
+def test_identify_names_the_kind():
+    link = embedded_apc_link()
+    info = link.call("identify")
+    assert info["kind"] == "APC" and info["pos_period_us"] == 1000 and info["protocol"] >= 1
+
+
+def test_read_parameters_signals_and_drive_parameters_over_the_link():
+    """The scope and watch read APC read parameters by number or alias ([48], APC_FB_POS, L7701-7875) and drive
+    parameters by menu.parameter (#18.11, L4840)."""
+    drive = ApcDrive()
+    link = embedded_apc_link(drive)
+    link.write_parameter("18.11", 25)
+    assert link.read_parameter("#18.11") == 25 and drive.params[(18, 11)] == 25
+    drive.APCSetRunMode(2)
+    drive.APCSetPositionSetPoint(65536)
+    drive.APCSelectReference(1)
+    samples = []
+    link.subscribe(lambda e: samples.append(e) if e.kind == "samples" else None)
+    link.call("stream", signals=["APC_PROF_OUT_POS", "[48]", "1.11"], interval_ms=5)
+    link.advance(600)
+    assert link.read_parameter("APC_PROF_OUT_POS") == 65536 == link.read_parameter(117)
+    assert link.call("read_signals", signals=["APC_POS_SETPOINT", 4]) == [65536, 1]
+    values = [row for e in samples for row in e.data["values"]]
+    assert values[-1][0] == 65536 and values[-1][2] == 1 and len(values) >= 100
+    status = link.status()
+    assert status.time_ms == 600 and status.cpos == 65536 and status.axend == 1
+    with pytest.raises(LinkError, match="only through the APC calls"):
+        link.write_parameter("48", 0)
+    with pytest.raises(LinkError, match="no APC read parameter"):
+        link.read_parameter("APC_NO_SUCH")
+
+
+def test_program_ops_need_a_dpl_runtime():
+    link = embedded_apc_link()
+    with pytest.raises(LinkError, match="runs DPL programs"):
+        link.start()
+
+
+def test_arrays_of_the_program_host_for_the_array_editor():
+    service = ApcService()
+    service.arrays.append(("InArray%", [1, 2, 3]))
+    link = embedded_apc_link()
+    link.service = service
+    assert link.call("list_arrays") == [{"index": 0, "name": "InArray%", "size": 3}]
+    link.write_array(0, [7, 8])
+    assert link.read_array(0) == [7, 8, 3]
+
+
+def test_apc_errors_reach_the_link_as_events():
+    """Table 4-11 codes as error events with 90.49's number (L2316-2324)."""
+    drive = ApcDrive()
+    link = embedded_apc_link(drive)
+    events = []
+    link.subscribe(events.append)
+    drive.APCSetRunMode(2)
+    drive.APCSelectReference(3)                   # size 0
+    link.advance(3)
+    assert [e.number for e in events if e.kind == "error"][:1] == [3]
+    assert link.call("error_history")[0]["number"] == 3
+    link.call("clear_error")
+    assert drive.trip == "" and link.status().error == 0
+
+
+def test_a_ctsync_node_service_advances_the_whole_line():
+    drives = [ApcDrive(), ApcDrive()]
+    line = CTSyncLine(drives)
+    service = ApcService(drives[1], advance=line.tick)
+    service.op_advance(10)
+    assert drives[0].samples == drives[1].samples == 10
