@@ -310,7 +310,7 @@ class KernelCore:
         elif reference == DIG_LOCK:
             if self._after_reset and self.dl.rigid:
                 self.dl.engage(0)
-                self.dl.rebase(self.dl.ratio.step(self.ref.integrated))
+                self.dl.rebase(self.dl.ratio.step(self._ref_last))    # the reset reference integrator
             else:
                 self.dl.engage(pg.position)
         self._after_reset = False

@@ -46,8 +46,9 @@ def speed_to_rpm(speed: int) -> float:
 
 
 def speed_to_rpm_x10(speed: int) -> int:
-    """[135] in rpm×10 (APCGetOutputSpeedRpmx10; the "0.01 rpm" of L2459 is read as a slip, spec §9.9)."""
-    return MULDIV(speed, 600000, TWO_30)
+    """[135] in rpm×10, to the nearest 0.1 rpm (**inferred**: 600 rpm reads 6000, not 5999) (APCGetOutputSpeedRpmx10;
+    the "0.01 rpm" of L2459 is read as a slip, spec §9.9)."""
+    return round_div(speed * 600000, TWO_30)
 
 
 def accel_from_ramp(speed: int, ramp_time_us: int) -> int:

@@ -1,0 +1,142 @@
+"""Sources, integrators, turns bits, inversion, filter insertion, resets per reference, user units
+(seed 004 §4.3, §4.12, §5.2.2)."""
+
+from motiontool.apc import ApcDrive, SlotEncoder
+from motiontool.apc.units import rpm_to_speed
+
+from .helpers import VirtualMaster, enabled_drive
+
+
+def test_turns_bits_move_the_window_over_the_48_bit_word():
+    """L2803-2835 "If the number of turns bits is set to 10, then the 32 bit position window … 1024 turns counts
+    … and 4194304 position counts / revolution"."""
+    d = ApcDrive()
+    d.slots[1] = SlotEncoder(word=(5 << 32) | (0x4000 << 16) | 0x8000)     # 5¼ turns + half a coarse count
+    d.APCSetReferenceSource(1)
+    d.APCSetRunMode(1)
+    d.tick()
+    assert d.read(20) == 5 * 65536 + 0x4000
+    d.APCSetNumOfTurnsBits(10)
+    d.tick()
+    assert d.read(20) == 5 * 4194304 + 0x4000 * 64 + 0x8000 // 1024 and d.read(14) == 10
+
+
+def test_invert_acts_between_source_and_integrator():
+    """L3042-3047 "inverts the reference source position, after the source counter [20], but before the integrated
+    counter [28]"."""
+    d = ApcDrive()
+    VirtualMaster(d, 100)
+    d.APCInvertRefSource()
+    d.APCDoNotResetSourcesOnDisable()
+    d.APCSetRunMode(1)
+    d.run_ms(10)
+    assert d.read(20) == 1000 and d.read(31) == -1000 and d.read(28) == -1000 and d.read(27) == 1
+
+
+def test_filter_insertion_through_the_disabled_input():
+    """L1153-1166 "The Reference or Feedback must be disabled … The current source position must be acquired from
+    read parameter [20] … inserted back … using APCSetRefInput"; "Any values written in POS0 … are used in the same
+    POS task cycle"."""
+    d = ApcDrive()
+    d.slots[1] = SlotEncoder(speed=1000 * 65536 // 4)      # 1000 counts per 1 ms sample
+    d.APCSetReferenceSource(1)
+    d.APCDisableRefInput()
+    d.APCDoNotResetSourcesOnDisable()
+    d.pos0 = lambda: d.APCSetRefInput(d.read(20) // 2)     # a "filter": half the source
+    d.APCSetRunMode(1)
+    d.run_ms(20)
+    assert d.read(32) == 1 and d.read(31) == d.read(20) // 2 and d.read(28) == 10000
+
+
+def test_reset_table_per_reference():
+    """Table 4-2 (L975-996): the profile generator output is set from the feedback integrator; its input too,
+    except in digital lock where it is the reference integrator."""
+    for reference, expect_input in ((1, "feedback"), (4, "reference")):
+        d = enabled_drive()
+        VirtualMaster(d, 300)
+        d.APCEnableRigidLock()
+        d.APCSetPositionSetPoint(0)
+        d.APCSelectReference(reference)
+        d.run_ms(50)
+        d.APCSetPositionResetOffset(777)
+        d.APCReset()
+        d.tick()
+        d.tick()
+        assert d.read(117) in range(777 - 2000, 777 + 2000)
+        if expect_input == "reference":
+            assert d.dl.target == d.read(28)          # ratio 1000/1000 · reference integrator
+        else:
+            assert d.read(48) == 777 + (d.read(48) - 777)
+
+
+def test_rigid_lock_shows_a_reset_offset_as_following_error():
+    """L2602-2606 "if the Digital Lock reference is selected by APCSelectReference(4), with APCEnableRigidLock()
+    active, the resultant following error will equal the reset offset position value"."""
+    d = enabled_drive()
+    VirtualMaster(d, 0)
+    d.APCEnableRigidLock()
+    d.APCSelectReference(4)
+    d.run_ms(20)
+    d.APCSetPositionResetOffset(5000)
+    d.APCReset()
+    d.tick()
+    d.tick()
+    assert d.read(48) in range(4990, 5010) and d.dl.target == 0
+    d.run_ms(1000)
+    assert abs(d.read(48)) <= 2            # the lock pulls the axis back onto ratio · reference
+
+
+def test_stop_to_position_transfer_with_and_without_remainder():
+    """L2211-2230, Fig 4-47: N/D = 4/1, running at 2 units/s, Stop with decel 1 unit/s² ends 2 units later; setting
+    only the whole units moves the axis to the nearest whole unit, APCTransferStopPosToPosSetPoint keeps it still."""
+    d = enabled_drive()
+    d.SetUPRNumeratorAndDenominator(4, 1)
+    d.APCSetProfileAccelRate(1)
+    d.APCSetProfileDecelRate(1)
+    d.APCSetSpeedSetPoint(2)
+    d.APCSelectReference(2)
+    d.run_ms(2500)
+    d.APCSetPositionSetPoint(0)
+    d.APCSelectReference(0)
+    d.run_ms(3000)
+    rest = d.read(1117)
+    value, rem, _ = d.APCReadParWithRem(91)
+    assert rem != 0 and value * 16384 + rem // 4 == rest
+    d.APCSetSetPointRem(0)
+    d.APCSetPositionSetPoint(value)
+    d.APCSelectReference(1)
+    d.run_ms(500)
+    assert d.read(1117) == value * 16384 != rest           # crept to the whole unit
+    d.APCSelectReference(0)
+    d.run_ms(100)
+    here = d.read(1117)
+    d.APCTransferStopPosToPosSetPoint()
+    d.APCSelectReference(1)
+    d.run_ms(500)
+    assert d.read(1117) == here                            # no motion
+
+
+def test_slot_without_module_trips_tr81():
+    """L2326-2327 "The slot selected as the reference or feedback does not contain a position option module"."""
+    d = ApcDrive()
+    assert d.APCSetFeedbackSource(2) == 0 and d.trip == "Tr81"
+
+
+def test_source_changed_from_two_tasks_trips_tr81():
+    """L2328-2331 "An attempt to change the Reference source or the Feedback source in more than one task"."""
+    d = ApcDrive()
+    d.task = "initial"
+    d.APCSetReferenceSource(4)
+    d.task = "background"
+    d.APCSetReferenceSource(0)
+    assert d.trip == "Tr81"
+
+
+def test_source_speed_in_apc_units():
+    """L7719 [26] reference source speed in 2^32 counts/rev per 250 µs: a slot encoder at 1000 rpm reads so."""
+    d = ApcDrive()
+    d.slots[2] = SlotEncoder(speed=rpm_to_speed(1000))
+    d.APCSetReferenceSource(2)
+    d.APCSetRunMode(1)
+    d.run_ms(5)
+    assert abs(d.read(26) - rpm_to_speed(1000)) < 65536 // 4
