@@ -3,6 +3,8 @@
 import math
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from motiontool.apc.calculators import counts_per_second, ramp_counts, steady_counts
 from motiontool.apc.cam import Cam, CamError
@@ -218,3 +220,35 @@ def test_cam_on_the_drive_follows_the_virtual_master_exactly():
         if master % cycle == 0 and master:
             assert d.read(117) - start == 600748 * (master // cycle)
     assert d.read(28) >= 3 * cycle
+
+
+segments = st.lists(st.tuples(st.integers(1, 5000), st.integers(-20000, 20000), st.integers(0, 5)),
+                    min_size=1, max_size=6)
+
+
+@settings(max_examples=60, deadline=None, derandomize=True)
+@given(segments, st.lists(st.integers(-3000, 3000), min_size=1, max_size=200))
+def test_cam_output_depends_only_on_the_master_position(table, steps):
+    """L1259 the CAM is a monotonic function of the master, forward and backward; whatever path the master takes
+    the slave is at F(M) = whole cycles · ΣY + the law inside the segment (ratio 1:1)."""
+    in_array = [x for x, _, _ in table]
+    out1 = [y for _, y, _ in table]
+    codes = [c for _, _, c in table]
+    c = cam(in_array, out1, codes, seg_limit=65535)
+    length, total_y = sum(in_array), sum(out1)
+
+    def f(master: int) -> int:
+        cycles, rest = divmod(master, length)
+        value = cycles * total_y
+        for x, y, code in table:
+            if rest >= x:
+                value, rest = value + y, rest - x
+            else:
+                return value + law_value(code, rest, x, y)
+        return value
+
+    master = slave = 0
+    for step in steps:
+        slave += c.step(step)
+        master += step
+        assert slave == f(master)

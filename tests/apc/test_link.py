@@ -76,3 +76,16 @@ def test_a_ctsync_node_service_advances_the_whole_line():
     service = ApcService(drives[1], advance=line.tick)
     service.op_advance(10)
     assert drives[0].samples == drives[1].samples == 10
+
+
+def test_a_ctsync_line_gives_every_node_a_link_on_one_clock():
+    """§4.10 (L2058-2101): the nodes run in lockstep; advance on any node's link moves the whole line."""
+    from motiontool.comms.apc_bus import ApcLineBus
+
+    bus = ApcLineBus([ApcDrive(), ApcDrive(), ApcDrive()])
+    bus.link(2).advance(25)
+    assert [bus.link(n).status().time_ms for n in bus.nodes] == [25, 25, 25]
+    assert all(d.samples == 25 for d in bus.line.drives)
+    assert bus.link(3).call("identify")["kind"] == "APC"
+    with pytest.raises(ValueError, match="not on the line"):
+        bus.link(9)

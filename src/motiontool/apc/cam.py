@@ -122,6 +122,14 @@ class Cam:
         """Follow `master_delta` counts of the reference this sample; the slave increment after the ratio.
         Raises CamError on a delta-segment-limit breach (Stop plus the trip, L3524-3546)."""
         self.wrapped = 0
+        if not self.single_shot and master_delta > 0 and self.position + master_delta < self.in_array[self.segment]:
+            # inside the present segment (the common case)
+            seg, pos = self.segment, self.position + master_delta
+            now = self._inseg(seg, pos)
+            out = now - self._done_here
+            self.position, self._done_here = pos, now
+            ratio = self.ratio
+            return out if ratio.numerator == ratio.denominator and not ratio.remainder else ratio.step(out)
         if self.single_shot:
             if self.complete:
                 return 0
@@ -163,7 +171,10 @@ class Cam:
         now = self._inseg(seg, pos)
         out += now - done
         self.segment, self.position, self._done_here = seg, pos, now
-        return self.ratio.step(out)
+        ratio = self.ratio
+        if ratio.numerator == ratio.denominator and not ratio.remainder:
+            return out
+        return ratio.step(out)
 
     def _wrap(self, backward: bool = False) -> int:
         """Past either end of the window: the next start index and size take effect here (L1520-1526)."""

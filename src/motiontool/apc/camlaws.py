@@ -28,23 +28,22 @@ def law_value(code: int, x: int, big_x: int, y: int) -> int:
         return 0
     if x >= big_x:
         return y
-    if code == 2:      # Square1: y·x²/X²
-        return _round_ratio(y * x * x, big_x * big_x)
-    if code == 3:      # Square2: y·x·(2X−x)/X²
-        return _round_ratio(y * x * (2 * big_x - x), big_x * big_x)
+    if code not in (1, 4, 5):
+        # exact rationals (Linear, also for an unknown code, **inferred**; Square1; Square2), rounded to the
+        # nearest count with halves away from zero
+        if code == 2:
+            a, b = y * x * x, big_x * big_x
+        elif code == 3:
+            a, b = y * x * (2 * big_x - x), big_x * big_x
+        else:
+            a, b = y * x, big_x
+        if a >= 0:
+            return (2 * a + b) // (2 * b)
+        return -((b - 2 * a) // (2 * b))
     if code == 1:      # Cosine: half-cosine from rest to rest
         return round(y * (1.0 - math.cos(math.pi * x / big_x)) / 2.0)
     if code == 4:      # Cosine1: sine acceleration from rest to 2Y/X
         u = x / big_x
         return round(y * (u - math.sin(math.pi * u) / math.pi))
-    if code == 5:      # Cosine2: sine deceleration from 2Y/X to rest
-        u = x / big_x
-        return round(y * (u + math.sin(math.pi * u) / math.pi))
-    return _round_ratio(y * x, big_x)     # 0 Linear (and any unknown code, **inferred**)
-
-
-def _round_ratio(a: int, b: int) -> int:
-    q, r = divmod(abs(a), b)
-    if 2 * r >= b:
-        q += 1
-    return q if a >= 0 else -q
+    u = x / big_x      # 5 Cosine2: sine deceleration from 2Y/X to rest
+    return round(y * (u + math.sin(math.pi * u) / math.pi))

@@ -212,7 +212,7 @@ class ReferenceCommands(Conversions):
     def _pg_set(self, pg, attr: str, value: int, hi: int) -> int:
         if not _in(value, 0, hi):
             return INVALID
-        setattr(pg, attr, value)
+        pg.set_limit(attr, value)
         return OK
 
     def APCEnableProfile(self) -> int:

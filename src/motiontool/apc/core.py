@@ -26,7 +26,7 @@ from collections.abc import Callable
 from motiontool.apc.cam import Cam, CamError
 from motiontool.apc.diglock import DigitalLock
 from motiontool.apc.driveparams import DriveParameters
-from motiontool.apc.intmath import Ratio, wrap32
+from motiontool.apc.intmath import wrap32
 from motiontool.apc.loop import OutputChannel, PositionLoop
 from motiontool.apc.plant import Plant, PlantConfig, SlotEncoder
 from motiontool.apc.profile import ProfileGenerator
@@ -46,6 +46,20 @@ class ApcError(Exception):
         self.code = code
 
 
+class Slots(dict):
+    """The three option slots {1, 2, 3} → a position module's encoder or None; `fitted` lists the modules."""
+
+    def __init__(self) -> None:
+        super().__init__({1: None, 2: None, 3: None})
+        self.fitted: list[SlotEncoder] = []
+
+    def __setitem__(self, slot: int, encoder: SlotEncoder | None) -> None:
+        if slot not in (1, 2, 3):
+            raise KeyError(f"slot {slot}: the Unidrive SP has slots 1, 2 and 3")
+        super().__setitem__(slot, encoder)
+        self.fitted = [e for e in self.values() if e is not None]
+
+
 class KernelCore:
     """State and tick of one SM-Applications APC with its drive (see ApcDrive for the public API)."""
 
@@ -54,7 +68,7 @@ class KernelCore:
         if pos_rate is not None:
             self.params.values[(81, 12)] = pos_rate
         self.plant = Plant(plant)
-        self.slots: dict[int, SlotEncoder | None] = {1: None, 2: None, 3: None}
+        self.slots = Slots()
         self.ref = Source("reference")
         self.fb = Source("feedback")
         self.pg = ProfileGenerator()
@@ -106,6 +120,7 @@ class KernelCore:
         self.trip = ""                       # "" | "Tr81" | "Tr44"
         self.drive_enabled = True            # the drive's enable and run command (→ #1.11)
         self._pipe = (0, 0, 0)               # drive speed demands of samples k-3, k-2, k-1 (APC units)
+        self._limit_rpm, self._limit = None, 0   # #1.06 and its speed, cached
         self._install_virtual_parameters()
         self.reinit()
 
@@ -118,6 +133,7 @@ class KernelCore:
         self.period_us = POS_RATE_US[code]
         self.quarters = self.period_us // 250
         self.period_ns = self.period_us * 1000
+        self.plant.configure(self.quarters)
 
     @property
     def time_ms(self) -> float:
@@ -186,10 +202,10 @@ class KernelCore:
         source.events.append((when, kind))
 
     # --- the tick ----------------------------------------------------------------------------------------------
-    def _source_word(self, source: Source) -> int:
+    def _source_word(self, source: Source, drive_word: int) -> int:
         sel = source.selector
         if sel == 0:
-            return self.plant.encoder_word()
+            return drive_word
         if sel == USER_PROGRAM:
             return source.user_word
         if sel == UNCONFIGURED:
@@ -198,31 +214,53 @@ class KernelCore:
         return slot.word if slot is not None else 0
 
     def tick(self) -> None:
-        """One POS sample (module docstring)."""
+        """One POS sample (module docstring). Written for speed: it runs 1000-4000 times per simulated second."""
         q = self.quarters
         t_prev = self.time_ns
         self.time_ns = t_now = t_prev + self.period_ns
         self.samples += 1
-        before = self.plant.position
-        old, new, _ = self._pipe
-        self.plant.step(old, new, q, self.reference_on == 1)
-        for slot in self.slots.values():
-            if slot is not None:
+        plant = self.plant
+        before = plant.position
+        pipe = self._pipe
+        if plant.step(pipe[0], pipe[1], self.drive_enabled and not self.trip):
+            plant.update_marker_window()
+            for frac in plant.marker_crossings(before, plant.position):
+                self.fb.events.append((t_prev + round(frac * self.period_ns), "marker"))
+        if self.slots.fitted:
+            for slot in self.slots.fitted:
                 slot.advance(q)
-        for frac in self.plant.marker_crossings(before, self.plant.position):
-            self.fb.events.append((t_prev + round(frac * self.period_ns), "marker"))
         counting = self.run_mode != 0
-        tb = self.turns_bits
         ref, fb = self.ref, self.fb
+        tb = self.turns_bits
+        pos0 = self.pos0
         if counting:
-            ref.refresh(self._source_word(ref), tb, True)
-            fb.refresh(self._source_word(fb), tb, True)
-        if self.pos0 is not None:
+            ref.sample_start_position, ref.sample_start_integrated = ref.position, ref.integrated
+            fb.sample_start_position, fb.sample_start_integrated = fb.position, fb.integrated
+            # a user-program source is written in POS0 (L3107-3110), so with a POS0 it is read after it only
+            sel = ref.selector
+            if sel == 0:
+                ref.refresh(plant.encoder_word(), tb)
+            elif sel != USER_PROGRAM or pos0 is None:
+                ref.refresh(self._source_word(ref, 0), tb)
+            sel = fb.selector
+            if sel == 0:
+                fb.refresh(plant.encoder_word(), tb)
+            elif sel != USER_PROGRAM or pos0 is None:
+                fb.refresh(self._source_word(fb, 0), tb)
+        if pos0 is not None:
             self.task = "pos0"
-            self.pos0()
+            pos0()
+            # what POS0 wrote counts in this sample (user-program words, filtered inputs: V01.03.03, L7219-7222)
+            if counting:
+                if ref.selector == USER_PROGRAM:
+                    ref.refresh(ref.user_word, tb)
+                elif ref.input_disabled:
+                    ref.refresh(ref.word, tb)
+                if fb.selector == USER_PROGRAM:
+                    fb.refresh(fb.user_word, tb)
+                elif fb.input_disabled:
+                    fb.refresh(fb.word, tb)
         if counting:
-            ref.refresh(self._source_word(ref), tb, True)
-            fb.refresh(self._source_word(fb), tb, True)
             # events of (t_(k-1), t_k] are latched now that this sample's positions are known, also those a
             # user-program source received in POS0 (decision A13)
             if ref.events:
@@ -233,9 +271,12 @@ class KernelCore:
                         self._active = None
             if fb.events:
                 fb.capture_events(t_prev, t_now, tb)
-            self._kernel()
-            ref.end_sample(tb, q)
-            fb.end_sample(tb, q)
+            if self.run_mode == 2 and self._was_enabled and not self._reset_request:
+                self._enabled_sample()
+                self.enabled = 1
+                self.reset_status = 0
+            else:
+                self._kernel()
         if self.pos1 is not None:
             self.task = "pos1"
             self.pos1()
@@ -243,19 +284,29 @@ class KernelCore:
         self._latch_output()
 
     def _latch_output(self) -> None:
-        speed, target, value = self.channel.latch(self.loop.output if self.enabled else 0)
-        if target is not None:
-            self.params.values[target] = value
-        if speed is None:   # no speed shortcut: the drive runs on its selected speed parameter (rpm×10)
-            key = (3, 22) if self.params.values.get((3, 23), 0) == 1 else (1, 21)
-            speed = rpm_to_speed(self.params.values.get(key, 0)) // 10
-        limit = rpm_to_speed(self.params.values.get((1, 6), 3000))
-        if abs(speed) > limit:
-            if self.params.values.get((81, 17), 0) == 1:
+        channel = self.channel
+        speed = self.loop.output if self.enabled else 0
+        values = self.params.values
+        if channel.enabled and channel.mode == 2:          # the examples' mode: #1.21 and the speed shortcut
+            x = speed * 600000                             # rpm×10 to the nearest 0.1 rpm (decision A46)
+            values[(1, 21)] = (x + 0x20000000) >> 30 if x >= 0 else -((0x20000000 - x) >> 30)
+        else:
+            shortcut, target, value = channel.latch(speed)
+            if target is not None:
+                values[target] = value
+            if shortcut is None:   # no speed shortcut: the drive runs on its selected speed parameter (rpm×10)
+                key = (3, 22) if values.get((3, 23), 0) == 1 else (1, 21)
+                shortcut = rpm_to_speed(values.get(key, 0)) // 10
+            speed = shortcut
+        rpm = values.get((1, 6), 3000)
+        if rpm != self._limit_rpm:
+            self._limit_rpm, self._limit = rpm, rpm_to_speed(rpm)
+        limit = self._limit
+        if speed > limit or speed < -limit:
+            if values.get((81, 17), 0) == 1:
                 self.trip_drive("Tr44", "output channel over range (#1.06)")
             speed = limit if speed > 0 else -limit
-        _, b, c = self._pipe
-        self._pipe = (b, c, speed)
+        self._pipe = (pipe := self._pipe)[1], pipe[2], speed
 
     # --- the kernel ----------------------------------------------------------------------------------------------
     def _kernel(self) -> None:
@@ -329,13 +380,14 @@ class KernelCore:
             self._freeze_since = None
             self._enter(self.reference)
         ref_now = self.ref.integrated
-        d_ref = wrap32(ref_now - self._ref_last) if since is None else wrap32(ref_now - since)
+        d_ref = ref_now - (self._ref_last if since is None else since)
+        if not -0x80000000 <= d_ref < 0x80000000:
+            d_ref = wrap32(d_ref)
         self._ref_last = ref_now
         active = self._active
-        self.cam.wrapped = 0
         if active == CAM:
             try:
-                pg.bypass(wrap32(pg.position + self.cam.step(d_ref)), q)
+                pg.bypass(pg.position + self.cam.step(d_ref), q)
             except CamError as exc:
                 self.apc_error(exc.code, str(exc))
             else:
@@ -360,10 +412,14 @@ class KernelCore:
             pg.to_speed(0, q)
         else:
             pg.to_position(self.stop_target, q, linear=self.stop_mode == LINEAR_STOP)
-        self._run_offsets(q)
-        scale = 1 << self.turns_bits
-        total = wrap32(pg.position + self.opg.position)
-        speed = round((pg.speed + self.opg.speed) * scale)
+        opg = self.opg
+        if self.offset_select or opg.position or opg.speed:
+            self._run_offsets(q)
+            total = wrap32(pg.position + opg.position)
+            speed = round((pg.speed + opg.speed) * (1 << self.turns_bits))
+        else:
+            total = pg.position
+            speed = round(pg.speed * (1 << self.turns_bits))
         self.loop.run(total, speed, self.fb.integrated, self.turns_bits)
 
     def _run_offsets(self, q: int) -> None:
@@ -393,9 +449,3 @@ class KernelCore:
         if self.stop_mode == INSTANT_STOP:
             return self.pg.position
         return self.pg.stop_position(linear=self.stop_mode == LINEAR_STOP)
-
-    def new_ratio(self, ratio: Ratio, numerator: int | None = None, denominator: int | None = None) -> None:
-        if numerator is not None:
-            ratio.numerator = numerator
-        if denominator is not None:
-            ratio.denominator = denominator

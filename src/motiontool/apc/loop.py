@@ -13,8 +13,8 @@ the drive takes it 250 µs later, a fixed, jitter-free delay of one POS period p
 
 from __future__ import annotations
 
-from motiontool.apc.intmath import div_trunc, wrap32
-from motiontool.apc.units import kp_speed, speed_to_rpm_x10
+from motiontool.apc.intmath import wrap32
+from motiontool.apc.units import speed_to_rpm_x10
 
 # output channel modes (L4253-4316, aliases L7993-8004); 1 and 11 are not allocated
 HARD_SPEED, SPEED_REF, PARAMETER, USER_REF, QUIET = 0, 2, 3, 4, 5
@@ -39,15 +39,27 @@ class PositionLoop:
         self.output = 0                  # [135]
 
     def run(self, profile_position: int, profile_speed: int, feedback: int, turns_bits: int) -> int:
-        """One sample of the loop from the total profile references ([144], speed) and the feedback [48]."""
-        self.position_ref = self.ext_position if self.ext_pos_selected else profile_position
-        self.speed_ref = self.ext_speed if self.ext_speed_selected else profile_speed
-        self.error = error = wrap32(self.position_ref - feedback)
-        p = kp_speed(self.kp, error, turns_bits)
+        """One sample of the loop from the total profile references ([144], speed) and the feedback [48].
+        Integer divisions truncate toward zero (decision A47)."""
+        ref = self.position_ref = self.ext_position if self.ext_pos_selected else profile_position
+        speed = self.speed_ref = self.ext_speed if self.ext_speed_selected else profile_speed
+        error = ref - feedback
+        if not -0x80000000 <= error < 0x80000000:
+            error = wrap32(error)
+        self.error = error
+        p = self.kp * error << turns_bits
+        p = p // 400000 if p >= 0 else -(-p // 400000)
         clamp = self.p_clamp
         p = clamp if p > clamp else (-clamp if p < -clamp else p)
-        ff = div_trunc(self.speed_ref * self.ff_gain, 1000)[0]
-        out = div_trunc((ff + p) * self.ratio_num, self.ratio_den)[0]
+        gain = self.ff_gain
+        if gain != 1000:
+            speed *= gain
+            speed = speed // 1000 if speed >= 0 else -(-speed // 1000)
+        out = speed + p
+        num, den = self.ratio_num, self.ratio_den
+        if num != den:
+            out *= num
+            out = out // den if out >= 0 else -(-out // den)
         clamp = self.output_clamp
         self.output = out = clamp if out > clamp else (-clamp if out < -clamp else out)
         return out

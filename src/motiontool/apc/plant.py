@@ -42,48 +42,73 @@ class Plant:
         self.position = self.config.start_revolutions * REV    # 48-bit word units, float
         self.speed = 0.0                                       # APC speed units
         self._step = REV // max(1, min(self.config.encoder_cpr, 1 << 32))
-        self._factors: dict[tuple[int, bool], tuple[float, float]] = {}
+        angle = self.config.marker_angle
+        self.marker_phase = None if angle is None else angle * REV
+        self._mark_window = (-math.inf, math.inf)   # the marker positions around the motor (see passed_marker)
+        if self.marker_phase is not None:
+            self._set_mark_window()
+        self.configure(4)
 
-    def _lag(self, quarters: int, coasting: bool) -> tuple[float, float]:
-        """(e^(−h/τ), τ·(1 − e^(−h/τ))) for h quarters: the exact first-order response over h."""
-        key = (quarters, coasting)
-        if key not in self._factors:
-            tau = 4.0 * (self.config.coast_tau_ms if coasting else self.config.speed_tau_ms)
-            e = math.exp(-quarters / tau) if tau > 0 else 0.0
-            self._factors[key] = (e, tau * (1.0 - e))
-        return self._factors[key]
+    def _set_mark_window(self) -> None:
+        k = math.floor((self.position - self.marker_phase) / REV)
+        self._mark_window = (k * REV + self.marker_phase, (k + 1) * REV + self.marker_phase)
 
-    def _run(self, demand: float, quarters: int, coasting: bool) -> None:
-        e, g = self._lag(quarters, coasting)
+    def update_marker_window(self) -> None:
+        """After a marker was passed: the marker positions either side of the motor now."""
+        self._set_mark_window()
+
+    def configure(self, quarters: int) -> None:
+        """Precompute the exact first-order response for the first 250 µs, the rest of the period, and a coast."""
+        def lag(h: float, tau_ms: float) -> tuple[float, float]:
+            tau = 4.0 * tau_ms
+            e = math.exp(-h / tau) if tau > 0 else 0.0
+            return e, tau * (1.0 - e)
+        self.quarters = quarters
+        self._first = lag(1, self.config.speed_tau_ms)
+        self._rest = lag(quarters - 1, self.config.speed_tau_ms)
+        self._coast = lag(quarters, self.config.coast_tau_ms)
+
+    def step(self, old: float, new: float, running: bool) -> bool:
+        """One POS period: the first 250 µs at the older demand, the rest at the newer one (the output channel's
+        latency, L2112-2120). A drive that is not running coasts toward rest. True when a marker was passed
+        (then `update_marker_window` must follow)."""
         v = self.speed
-        self.position += demand * quarters + (v - demand) * g
-        self.speed = demand + (v - demand) * e
-
-    def step(self, old: float, new: float, quarters: int, running: bool) -> None:
-        """One POS period of `quarters`: the first 250 µs at the older demand, the rest at the newer one
-        (the output channel's latency, L2112-2120). A drive that is not running coasts toward rest."""
         if not running:
-            self._run(0.0, quarters, True)
-            return
-        self._run(old, 1, False)
-        if quarters > 1:
-            self._run(new, quarters - 1, False)
+            e, g = self._coast
+            self.position += v * g
+            self.speed = v * e
+            lo, hi = self._mark_window
+            return not lo <= self.position < hi
+        e, g = self._first
+        pos = self.position + old + (v - old) * g
+        v = old + (v - old) * e
+        q = self.quarters - 1
+        if q:
+            e, g = self._rest
+            pos += new * q + (v - new) * g
+            v = new + (v - new) * e
+        self.position = pos
+        self.speed = v
+        lo, hi = self._mark_window
+        return not lo <= pos < hi
 
     def encoder_word(self) -> int:
         """The drive encoder's 48-bit word, quantised to its resolution."""
         step = self._step
-        return (int(math.floor(self.position / step)) * step) & WORD48
+        return (int(self.position // step) * step) & WORD48
 
     def marker_crossings(self, before: float, after: float) -> list[float]:
         """Fractions (0, 1] of the sample at which the marker angle was passed (linear in between)."""
-        angle = self.config.marker_angle
-        if angle is None or before == after:
+        phase = self.marker_phase
+        if phase is None or before == after:
             return []
-        lo, hi = sorted((before, after))
-        first = math.ceil((lo - angle * REV) / REV)
-        last = math.floor((hi - angle * REV) / REV)
-        marks = [(k + angle) * REV for k in range(first, last + 1)]
-        return sorted((m - before) / (after - before) for m in marks if 0 < (m - before) / (after - before) <= 1)
+        k0 = math.floor((before - phase) / REV)
+        k1 = math.floor((after - phase) / REV)
+        if k0 == k1:
+            return []
+        lo, hi = (k0 + 1, k1) if k1 > k0 else (k1 + 1, k0)
+        marks = [k * REV + phase for k in range(lo, hi + 1)]
+        return sorted((m - before) / (after - before) for m in marks)
 
 
 class SlotEncoder:
@@ -93,7 +118,6 @@ class SlotEncoder:
     def __init__(self, speed: int = 0, word: int = 0):
         self.speed = speed
         self.word = word & WORD48
-        self._rem = 0
 
     def advance(self, quarters: int) -> None:
         self.word = (self.word + self.speed * quarters) & WORD48

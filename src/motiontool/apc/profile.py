@@ -29,6 +29,7 @@ class ProfileGenerator:
         self.accel, self.decel, self.jerk, self.max_speed = accel, decel, jerk, max_speed
         self.disabled = False            # [114] / [154]
         self.turns_bits = 16
+        self.version = 0                 # raised when a limit changes: the present plan is then replanned
         self.reset(0)
 
     # --- state ------------------------------------------------------------------------------------------
@@ -56,8 +57,10 @@ class ProfileGenerator:
         return tj.Limits(self.accel / scale, decel / scale, self.max_speed / scale,
                          0.0 if linear else self.jerk / scale)
 
-    def _key(self, *extra):
-        return (self.accel, self.decel, self.jerk, self.max_speed, self.turns_bits, *extra)
+    def set_limit(self, name: str, value: int) -> None:
+        """Change accel, decel, jerk or max_speed; a profile in progress replans from where it is (L803-812)."""
+        setattr(self, name, value)
+        self.version += 1
 
     def _rebase(self) -> float:
         """Move the integer base to the present position; return the fractional offset left."""
@@ -69,23 +72,28 @@ class ProfileGenerator:
     # --- references ---------------------------------------------------------------------------------------
     def to_position(self, target: int, n: int, *, linear: bool = False, decel_from_accel: bool = False) -> None:
         """One sample toward position `target` (counts), replanning when the target or a limit changed."""
-        target = wrap32(target)
-        self.input_position = target
-        key = self._key("p", target, linear, decel_from_accel)
-        if self.mode != "position" or key != self._planned:
+        if (target != self.target or self.mode != "position"
+                or self._planned != (self.version, self.turns_bits, linear, decel_from_accel)):
+            target = wrap32(target)
+            self.input_position = target
             off = self._rebase()
             lim = self.limits(linear, decel_from_accel)
             d = wrap32(target - self.base)
             pieces = tj.move(self.speed, self.acceleration, d - off, lim)
             self.traj = tj.Trajectory(self.base, (off, self.speed, self.acceleration), pieces, final_offset=float(d))
-            self.mode, self.target, self._planned = "position", target, key
+            self.mode, self.target = "position", target
+            self._planned = (self.version, self.turns_bits, linear, decel_from_accel)
+        if self.traj.done:               # resting on the target
+            self.prev_speed = self.speed
+            self.speed = self.acceleration = self.jerk_out = 0.0
+            return
         self._follow_plan(n)
 
     def to_speed(self, speed: int, n: int, *, linear: bool = False) -> None:
         """One sample toward speed `speed` (APC units), clamped to the maximum speed."""
         speed = max(-self.max_speed, min(self.max_speed, speed))
         self.input_speed = speed
-        key = self._key("v", speed, linear)
+        key = (self.version, self.turns_bits, speed, linear)
         if self.mode not in ("speed", "cruise") or key != self._planned:
             off = self._rebase()
             v1 = speed / (1 << self.turns_bits)
@@ -106,19 +114,17 @@ class ProfileGenerator:
         """Bypassed (disabled, CAM, locked digital lock, instant stop): the output is the input; the speed is
         the increment per sample, so leaving the bypass later is bumpless in speed (acceleration restarts
         from 0, **inferred**)."""
-        position = wrap32(position)
-        self.input_position = position
+        if not -0x80000000 <= position < 0x80000000:
+            position = wrap32(position)
+        step = position - self.position
+        if not -0x80000000 <= step < 0x80000000:
+            step = wrap32(step)
+        self.input_position = self.position = self.base = position
         self.prev_speed = self.speed
-        self.speed = wrap32(position - self.position) / n
-        self.acceleration = self.jerk_out = 0.0
-        self.position = self.base = position
-        self.offset = 0.0
-        self.mode, self._planned = "bypass", None
-
-    def hold(self) -> None:
-        """Rest where the output is (nothing to do this sample)."""
-        self.prev_speed = self.speed
-        self.speed = self.acceleration = self.jerk_out = 0.0
+        self.speed = step / n
+        self.acceleration = self.jerk_out = self.offset = 0.0
+        if self.mode != "bypass":
+            self.mode, self._planned = "bypass", None
 
     # --- stepping -------------------------------------------------------------------------------------------
     def _follow_plan(self, n: int) -> None:

@@ -24,7 +24,6 @@ the integrator does not see the jump (**inferred**: a reset of the source must n
 from __future__ import annotations
 
 from motiontool.apc.intmath import wrap32
-from motiontool.apc.units import counts_to_window
 
 UNCONFIGURED = 5
 USER_PROGRAM = 4
@@ -45,9 +44,8 @@ class Source:
         self.user_input = 0              # value written by APCSetRefInput / APCSetFbckInput
         self.input = 0                   # [31] / [51]
         self.integrated = 0              # [28] / [48]
-        self.speed = 0                   # [26] / [46], APC units
-        self.sample_start_position = 0   # [20] at the end of the previous sample (speed, interpolation)
-        self.sample_start_integrated = 0
+        self.sample_start_position = 0   # [20] and the integrator at the end of the previous sample: the
+        self.sample_start_integrated = 0  # sample's change gives the speed and the capture interpolation
         # capture latches
         self.freeze_enabled = False      # 90.47 / 90.48
         self.freeze_flag = 0             # [22] / [42]
@@ -61,25 +59,33 @@ class Source:
         self.events: list[tuple[int, str]] = []   # (time in ns, "freeze" | "marker") waiting for their sample
 
     # --- refresh ----------------------------------------------------------------------------------------------
-    def refresh(self, word: int, turns_bits: int, integrate: bool) -> None:
-        """Read the source word and pass the change on to the input and (if `integrate`) the integrator."""
+    def refresh(self, word: int, turns_bits: int) -> None:
+        """Read the source word and pass the change on to the input and the integrator."""
         self.word = word
-        self.position = counts_to_window(word + self.marker_adjust, turns_bits)
+        w = ((word + self.marker_adjust) >> turns_bits) & 0xFFFFFFFF
+        position = self.position = w - 0x100000000 if w & 0x80000000 else w
         if self.input_disabled:
             new_input = wrap32(self.user_input)
+        elif self.inverted:
+            new_input = wrap32(-position)
         else:
-            new_input = wrap32(-self.position) if self.inverted else self.position
-        delta = wrap32(new_input - self.input)
+            new_input = position
+        delta = new_input - self.input
+        if not -0x80000000 <= delta < 0x80000000:
+            delta = wrap32(delta)
         self.input = new_input
-        if integrate:
-            self.integrated = wrap32(self.integrated + delta)
+        total = self.integrated + delta
+        self.integrated = total if -0x80000000 <= total < 0x80000000 else wrap32(total)
 
-    def end_sample(self, turns_bits: int, quarters: int) -> None:
-        """Close the sample: the source speed is this sample's change of [20] in APC units (**inferred**:
-        the manual gives the unit, L7719, not the filter)."""
-        self.speed = (wrap32(self.position - self.sample_start_position) << turns_bits) // quarters
+    def start_sample(self) -> None:
         self.sample_start_position = self.position
         self.sample_start_integrated = self.integrated
+
+    def speed(self, turns_bits: int, quarters: int) -> int:
+        """[26] / [46]: this sample's change of [20] in APC units (**inferred**: the manual gives the unit, L7719,
+        not the filter)."""
+        d = wrap32(self.position - self.sample_start_position)
+        return (d << turns_bits) // quarters
 
     # --- capture -----------------------------------------------------------------------------------------------
     def capture_events(self, t_start: int, t_end: int, turns_bits: int) -> list[tuple[str, int]]:

@@ -182,21 +182,21 @@ class Trajectory:
 
     def sample(self, dt: float) -> tuple[float, float, float, float]:
         """Advance by dt quarters: (position offset from base, speed, acceleration, jerk) at the new time."""
+        t = self.t + dt
         if self.done:
-            self.t += dt
-            return self.final_offset + self.final_speed * self.t, self.final_speed, 0.0, 0.0
-        self.t += dt
-        t, i, pieces = self.t, self.index, self.pieces
-        while i < len(pieces) and t >= pieces[i].duration:
-            t -= pieces[i].duration
-            i += 1
-        if i >= len(pieces):
-            self.done = True
-            self.t = t          # time spent cruising after the end
+            self.t = t
             return self.final_offset + self.final_speed * t, self.final_speed, 0.0, 0.0
-        # keep the remaining time relative to the present piece
-        self.index = i
-        self.t = t
-        self.pieces = pieces
-        p, v, a = advance(self.starts[i], pieces[i], t)
-        return p, v, a, pieces[i].jerk
+        i, pieces = self.index, self.pieces
+        piece = pieces[i]
+        while t >= piece.duration:
+            t -= piece.duration
+            i += 1
+            if i == len(pieces):
+                self.done = True
+                self.t = t          # time spent cruising after the end
+                return self.final_offset + self.final_speed * t, self.final_speed, 0.0, 0.0
+            piece = pieces[i]
+        self.index, self.t = i, t
+        p, v, _ = self.starts[i]
+        a, j = piece.a0, piece.jerk
+        return (p + t * (v + t * (a / 2 + j * t / 6)), v + t * (a + j * t / 2), a + j * t, j)

@@ -62,19 +62,6 @@ def jerk_from_time(accel: int, jerk_time_us: int) -> int:
     return MULDIV(accel, 250, jerk_time_us)
 
 
-def accel_to_rpm_per_s(accel: int) -> float:
-    return speed_to_rpm(accel) * QUARTERS_PER_S
-
-
-def speed_to_counts_per_s(speed: float, turns_bits: int) -> float:
-    """Speed units → counts per second at TB turns bits (one count = 2^TB units of 2^32 per revolution)."""
-    return speed * QUARTERS_PER_S / (1 << turns_bits)
-
-
-def counts_per_s_to_speed(counts_per_s: float, turns_bits: int) -> float:
-    return counts_per_s * (1 << turns_bits) / QUARTERS_PER_S
-
-
 def kp_speed(kp: int, error_counts: int, turns_bits: int) -> int:
     """P-path speed in APC units for a following error (**derived**, spec §1.15): Kp in 0.01 (rad/s)/rad means
     error·Kp/100 revolutions per second, i.e. error·Kp·2^TB/400000 speed units (2500 and 1 count: ≈410)."""

@@ -1,0 +1,48 @@
+"""ApcLineBus: a CTSync line of simulated APC drives in this process, one Link per node (nodes 1..N).
+
+Like `EmbeddedBus` for the MCO 305: time is common — `advance` on any node's link (or on the bus) runs the whole
+line, sample by sample, so every node's CTSyncGetSlaveReferences sees the master's data of the sample before
+(apc/ctsync.py). Synchronous only, deterministic.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+from motiontool.apc.ctsync import CTSyncLine
+from motiontool.apc.drive import ApcDrive
+from motiontool.comms.apc_service import ApcService
+from motiontool.comms.bus import NodeLink
+
+
+class ApcLineBus:
+    def __init__(self, drives: Iterable[ApcDrive], *, four_wire: bool = False):
+        self.line = CTSyncLine(drives, four_wire=four_wire)
+        self.closed = False
+        self._us = 0
+        self.links: dict[int, NodeLink] = {}
+        for node, drive in enumerate(self.line.drives, start=1):
+            # the bus, not the node, runs the POS samples: a node's service only keeps its clock and streams
+            self.links[node] = NodeLink(self, node, ApcService(drive, advance=lambda: None))
+
+    @property
+    def nodes(self) -> list[int]:
+        return list(self.links)
+
+    def link(self, node: int) -> NodeLink:
+        if node not in self.links:
+            raise ValueError(f"node {node} is not on the line (nodes {self.nodes})")
+        return self.links[node]
+
+    def advance(self, ms: int) -> None:
+        period = self.line.drives[0].period_us
+        for _ in range(int(ms)):
+            self._us += 1000
+            while self._us >= period:
+                self._us -= period
+                self.line.tick()
+            for link in self.links.values():
+                link.service.tick()
+
+    def close(self) -> None:
+        self.closed = True
