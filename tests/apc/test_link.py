@@ -89,3 +89,30 @@ def test_a_ctsync_line_gives_every_node_a_link_on_one_clock():
     assert bus.link(3).call("identify")["kind"] == "APC"
     with pytest.raises(ValueError, match="not on the line"):
         bus.link(9)
+
+
+def test_program_host_slices_before_each_pos_sample_and_publishes():
+    """The DPL host runs Initial/Background between POS samples (docs/apc.md "Link") and reports through the
+    service's publish."""
+    from motiontool.comms.protocol import LinkEvent
+
+    order = []
+
+    class Host:
+        publish = None
+
+        def slice(self):
+            order.append(("slice", drive.samples))
+
+        def op_start(self, number=None, step=False):
+            self.publish(LinkEvent("program", 0, "started"))
+
+    drive = ApcDrive(pos_rate=2)                   # 0.5 ms: two samples per link millisecond
+    link = embedded_apc_link(drive)
+    link.service.attach_program(Host())
+    events = []
+    link.subscribe(events.append)
+    link.start()
+    link.advance(2)
+    assert order == [("slice", 0), ("slice", 1), ("slice", 2), ("slice", 3)]
+    assert [e.text for e in events] == ["started"]

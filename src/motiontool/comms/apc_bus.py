@@ -40,6 +40,8 @@ class ApcLineBus:
             self._us += 1000
             while self._us >= period:
                 self._us -= period
+                for link in self.links.values():
+                    link.service.slice()        # every node's Initial/Background before the sample
                 self.line.tick()
             for link in self.links.values():
                 link.service.tick()

@@ -10,7 +10,9 @@ line, one service per node — so the scope, the watch and the array editor work
 * Arrays belong to the DPL program: a program host (the DPL runtime) fills `arrays` with (name, list) pairs.
 * Programs: the ops `download`, `start`, `break`, `continue`, `list_programs`, `delete_program`,
   `set_autostart`, `power_on`, `set_breakpoints`, `step`, `read_variables`, `write_variable` go to the attached
-  program host (`ApcService.program`, any object with `op_<name>` methods); without one they are refused.
+  program host (`attach_program`: any object with `op_<name>` methods; its `slice()`, if it has one, runs the
+  Initial/Background time slice before each POS sample; it reports errors and program state through
+  `publish(LinkEvent)`, which the service gives it); without one they are refused.
 """
 
 from __future__ import annotations
@@ -49,7 +51,7 @@ class ApcService:
         """`advance` runs one POS sample of the whole machine (a CTSync line ticks every node); by default the
         drive's own tick."""
         self.drive = drive or ApcDrive()
-        self._advance = advance or self.drive.tick
+        self._run_sample = advance or self.drive.tick
         self.listeners: list[Callable[[LinkEvent], None]] = []
         self.program: Any = None                      # the DPL program host, if any
         self.arrays: list[tuple[str, list]] = []      # the program's arrays, in declaration order
@@ -66,14 +68,32 @@ class ApcService:
     def controller(self) -> ApcDrive:
         return self.drive
 
+    def attach_program(self, program: Any) -> None:
+        """Attach the DPL program host: it gets `publish` for its LinkEvents (errors, program state)."""
+        self.program = program
+        if program is not None:
+            program.publish = self.publish
+
+    def slice(self) -> None:
+        """The program's time between POS samples (Initial, Background), if a host is attached."""
+        program = self.program
+        if program is not None and hasattr(program, "slice"):
+            program.slice()
+
+    def _advance(self) -> None:
+        self.slice()
+        self._run_sample()
+
     def _drive_event(self, kind: str, details: dict) -> None:
         number = details.get("code", 0) if kind == "error" else 81 if details.get("trip") == "Tr81" else 44
         self.errors.append({"time_ms": self.time_ms, "kind": kind, "number": number, "text": details.get("text", "")})
         self._publish(LinkEvent("error", self.time_ms, details.get("text", ""), number))
 
-    def _publish(self, event: LinkEvent) -> None:
+    def publish(self, event: LinkEvent) -> None:
         for listener in self.listeners:
             listener(event)
+
+    _publish = publish
 
     # --- time ------------------------------------------------------------------------------------------------------
     def tick(self) -> None:
