@@ -9,6 +9,7 @@ dialogs in order, and leaving the block fails the test if a dialog expected was 
 from __future__ import annotations
 
 import contextlib
+import os
 from collections.abc import Callable
 from pathlib import Path
 
@@ -26,6 +27,15 @@ from PySide6.QtWidgets import (
 
 Reply = Callable[[QWidget], None]
 POLL_MS = 20
+
+
+def trace(line: str) -> None:
+    """With MOTIONTOOL_GUI_TRACE=FILE the dialogs answered (and the walk's actions) are logged as they happen:
+    the place to look when a GUI test hangs."""
+    path = os.environ.get("MOTIONTOOL_GUI_TRACE")
+    if path:
+        with open(path, "a", encoding="utf-8") as f:
+            f.write(line + "\n")
 
 
 def file_reply(path: Path | str) -> Reply:
@@ -95,6 +105,7 @@ class Answerer:
         self.seen: list[str] = []
         self.errors: list[BaseException] = []
         self._busy = False
+        self._times: dict[int, int] = {}
         self.timer = QTimer()
         self.timer.setInterval(POLL_MS)
         self.timer.timeout.connect(self._poll)
@@ -108,6 +119,12 @@ class Answerer:
             return
         self._busy = True
         self.seen.append(f"{type(dialog).__name__} {dialog.windowTitle()!r}")
+        self._times[id(dialog)] = self._times.get(id(dialog), 0) + 1
+        if self._times[id(dialog)] > 3:  # the reply did not close it: give up on it rather than loop
+            self.errors.append(AssertionError(f"{self.seen[-1]} stayed open after {self._times[id(dialog)] - 1} "
+                                              "replies"))
+            reply = cancel_reply
+        trace("   modal " + self.seen[-1])
         try:
             reply(dialog)
         except BaseException as exc:  # noqa: BLE001 - reported when the block ends; the dialog is closed

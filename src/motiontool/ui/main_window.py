@@ -213,7 +213,7 @@ class MainWindow(QMainWindow):
         atomic_write_text(target, editor.toPlainText())
         editor.setProperty("path", str(target.resolve()))
         editor.mark_saved()
-        editor.save_bookmarks(self.bookmark_store, target.resolve())
+        editor.save_bookmarks(self.bookmark_store, path=target.resolve())
         self.recovery.discard(editor)
         self._remember_recent(target)
         self._update_tab_title(editor)

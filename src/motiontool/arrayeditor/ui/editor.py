@@ -155,7 +155,7 @@ class ArrayEditor(QMainWindow):
         self.selection_box = QComboBox()
         self.selection_box.setMinimumWidth(110)
         self.selection_box.currentTextChanged.connect(self._select)
-        self.actions: dict[str, QAction] = {}
+        self.actions_by_text: dict[str, QAction] = {}  # not `actions`: that is QWidget.actions()
         bar = self.addToolBar("Array Editor")
         bar.setObjectName("array-editor")
         for text, slot, keys in (("Open...", self.open_file, "Ctrl+O"), ("Save File", self.save, "Ctrl+S"),
@@ -179,7 +179,7 @@ class ArrayEditor(QMainWindow):
             action.triggered.connect(lambda *_, s=slot: s())
             if keys:
                 action.setShortcut(QKeySequence(keys))
-            self.actions[text] = action
+            self.actions_by_text[text] = action
         bar.addSeparator()
         bar.addWidget(QLabel(" Array: "))
         bar.addWidget(self.selection_box)
@@ -304,7 +304,7 @@ class ArrayEditor(QMainWindow):
         return True
 
     def save(self) -> bool:
-        return self.save_as(self.path) if self.path else self.save_as()
+        return self.save_as(path=self.path) if self.path else self.save_as()
 
     def save_as(self, *, path: Path | None = None) -> bool:
         if path is None:
