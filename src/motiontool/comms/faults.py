@@ -1,9 +1,10 @@
 """A fault-injecting transport: wraps a serial port (pyserial's interface) and spoils what passes through it.
 
-For tests, benchmarks and anyone checking how a link copes with a bad line: every write (one telegram) and every
-read is, with the given probabilities (in %, each drawn from one seeded generator, so a run can be repeated):
+For tests, benchmarks and anyone checking how a link copes with a bad line: every telegram in each direction — a
+write, and the answer that follows it (its first read) — is, with the given probabilities (in %, each drawn from
+one seeded generator, so a run can be repeated):
 
-- drop: lost (a write never reaches the line; the bytes of a read vanish);
+- drop: lost (a write never reaches the line; the bytes of the answer's first read vanish, the rest is garbage);
 - corrupt: one byte of it gets one to eight bits flipped;
 - duplicate: a write goes out twice;
 - delay: a write is held back `delay_s` (longer than an answer may take, so its answer comes late).
@@ -40,12 +41,13 @@ class FaultyPort:
         self._port = port
         self.faults = faults
         self._rng = random.Random(faults.seed)
+        self._answer_due = False          # the next read is the first of an answer: the answer's fault is drawn
 
     def __getattr__(self, name):
         return getattr(self._port, name)
 
     def __setattr__(self, name, value):
-        if name in ("_port", "faults", "_rng"):
+        if name in ("_port", "faults", "_rng", "_answer_due"):
             object.__setattr__(self, name, value)
         else:
             setattr(self._port, name, value)
@@ -62,6 +64,7 @@ class FaultyPort:
         return bytes(spoiled)
 
     def write(self, data: bytes) -> int:
+        self._answer_due = True
         f = self.faults
         if self._hit("drop", f.drop):
             return len(data)
@@ -76,8 +79,9 @@ class FaultyPort:
 
     def read(self, size: int = 1) -> bytes:
         data = self._port.read(size)
-        if not data:
+        if not data or not self._answer_due:
             return data
+        self._answer_due = False
         if self._hit("drop", self.faults.drop):
             return b""
         if self._hit("corrupt", self.faults.corrupt):

@@ -158,7 +158,7 @@ class FcBus:
                 if problem.startswith("no answer"):
                     self.stats.timeouts += 1
                 return problem
-            data = self.port.read(max(1, self.port.in_waiting))
+            data = self.port.read(self._reader.missing())
             if not data:
                 continue
             for item in self._reader.feed(data):

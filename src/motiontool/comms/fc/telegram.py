@@ -190,6 +190,14 @@ class TelegramReader:
     def __init__(self) -> None:
         self.buffer = bytearray()
 
+    def missing(self) -> int:
+        """How many more bytes the telegram at the start of the buffer needs (at least 1): a reader asks the port for
+        exactly that many, so a telegram arrives in two reads (STX and LGE, then the rest)."""
+        buf = self.buffer
+        if len(buf) < 2 or buf[0] != STX:
+            return max(1, 2 - len(buf))
+        return max(1, expected_length(max(buf[1], LGE_PROCESS)) - len(buf))
+
     def feed(self, data: bytes) -> list[Telegram | TelegramError]:
         self.buffer += data
         found: list[Telegram | TelegramError] = []
