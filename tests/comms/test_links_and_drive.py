@@ -182,3 +182,33 @@ def test_install_program_saves_and_starts_it_once():
     assert link.call("list_programs") == [{"number": 0, "name": "p", "autostart": False}]
     with pytest.raises(ValueError, match="no node 4"):
         drive.node(4)
+
+
+def test_a_remote_link_reports_a_loss_once_and_comes_back_by_itself():
+    """A line that comes back (a drive that answers again) restores the link: `alive` and one `connection` event
+    per change, while the poller keeps trying."""
+    from motiontool.comms.protocol import ConnectionLost
+
+    drive = VirtualDrive([1], clock="virtual")
+    down = threading.Event()
+
+    def exchange(message):
+        if down.is_set():
+            raise ConnectionLost("no answer")
+        return drive.node(1).handle_message(message)
+
+    link = RemoteLink(exchange, "flaky", poll_interval_s=0.01)
+    events = []
+    link.subscribe(lambda e: events.append(e.text) if e.kind == "connection" else None)
+    assert link.read_parameter("KPROP") == 30
+    down.set()
+    with pytest.raises(ConnectionLost):
+        link.status()
+    time.sleep(0.1)                      # the poller fails a few times more: said once
+    assert not link.alive and events == ["Lost connection: no answer"]
+    down.clear()
+    deadline = time.monotonic() + 5
+    while not link.alive and time.monotonic() < deadline:
+        time.sleep(0.01)
+    assert link.alive and events == ["Lost connection: no answer", "Connection restored"]
+    link.close()

@@ -5,7 +5,8 @@ telegrams (comms/fc/), a CANopen link can write it to an SDO domain object and r
 else is here: request ids and the session, decoding answers, and fetching events.
 
 Events are polled (a bus master is never called back): while anything subscribes, a poller thread asks for the
-events after the last one it saw, every `poll_interval_s` or at once while the controller says more are waiting.
+events after the last one it saw, every `poll_interval_s` or at once while the controller says more are waiting;
+while the connection is lost it keeps trying, and `alive` comes back with the first answer.
 `flush_events()` fetches what is waiting now (the CLI calls it before it reads the status, so output keeps its
 order). Events are published in sequence order, never twice; events the controller had to drop are reported
 as a ``message`` event.
@@ -56,13 +57,22 @@ class RemoteLink(Link):
         with self._bus:
             try:
                 answer = self._exchange(encode_request(request, self.session))
-            except ConnectionLost:
-                self._lost = True
+            except ConnectionLost as exc:
+                self._set_connection(lost=True, text=f"Lost connection: {exc}")
                 raise
+        self._set_connection(lost=False)
         response = decode_response(answer)
         if response.id != request.id and response.ok:
             raise LinkError(f"answer to request {response.id} where {request.id} was expected")
         return response.result()
+
+    def _set_connection(self, *, lost: bool, text: str = "") -> None:
+        """Mark the link lost or restored; a `connection` event says so once per change. A transport whose line
+        comes back by itself (a heartbeat that resumes) calls it with lost=False."""
+        if lost == self._lost:
+            return
+        self._lost = lost
+        self._publish(LinkEvent("connection", 0, text or ("Lost connection" if lost else "Connection restored")))
 
     def identify(self) -> dict:
         if self._identity is None:
@@ -108,10 +118,8 @@ class RemoteLink(Link):
                 try:
                     if self.poll_events():
                         continue
-                except ConnectionLost as exc:
-                    self._lost = True
-                    self._publish(LinkEvent("connection", 0, f"Lost connection: {exc}"))
-                    return
+                except ConnectionLost:
+                    pass            # said once by request(); keep trying: the line may come back
                 except LinkError as exc:  # a refused poll (e.g. a damaged answer): try again next time
                     self._publish(LinkEvent("message", 0, f"event poll failed: {exc}"))
             self._closed.wait(self.poll_interval_s)

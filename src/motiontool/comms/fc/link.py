@@ -79,9 +79,10 @@ class FcLink(RemoteLink):
         try:
             reply = self.bus.transact(parameter(self.adr, ak, p.index, value),
                                       lambda t: t.text is None and t.pke is not None and t.pnu == p.index)
-        except ConnectionLost:
-            self._lost = True
+        except ConnectionLost as exc:
+            self._set_connection(lost=True, text=f"Lost connection: {exc}")
             raise
+        self._set_connection(lost=False)
         if reply.ak == AK_REFUSED:
             code = reply.pwe & 0xFFFF
             number = {0: 112, 1: 112, 2: 183}.get(code, 0)
