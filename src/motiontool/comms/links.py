@@ -16,7 +16,7 @@ Openers receive the parsed `LinkSpec` and return an open `Link` or raise `LinkEr
 from __future__ import annotations
 
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
 from motiontool.comms.link import Link
@@ -79,14 +79,17 @@ class Scheme:
     opener: Callable[[LinkSpec], Link]
     syntax: str
     help: str
+    scan: Callable[[LinkSpec, Iterable[int]], list[int]] | None = None
 
 
 _SCHEMES: dict[str, Scheme] = {}
 
 
-def register_link_scheme(name: str, opener: Callable[[LinkSpec], Link], syntax: str, help: str = "") -> None:
-    """Make `--link NAME:…` open links with `opener` (called with the parsed LinkSpec)."""
-    _SCHEMES[name.lower()] = Scheme(name.lower(), opener, syntax, help)
+def register_link_scheme(name: str, opener: Callable[[LinkSpec], Link], syntax: str, help: str = "",
+                         scan: Callable[[LinkSpec, Iterable[int]], list[int]] | None = None) -> None:
+    """Make `--link NAME:…` open links with `opener` (called with the parsed LinkSpec); `scan(spec, ids)`, when
+    given, returns the controller ids of `ids` that answer on the spec's interface (the IDE's scan range)."""
+    _SCHEMES[name.lower()] = Scheme(name.lower(), opener, syntax, help, scan)
 
 
 def link_schemes() -> list[str]:
@@ -108,6 +111,17 @@ def open_link(text: str | LinkSpec) -> Link:
     if scheme is None:
         raise LinkError(f"link '{spec.text}': unknown scheme '{spec.scheme}' (known: {', '.join(link_schemes())})")
     return scheme.opener(spec)
+
+
+def scan_controllers(text: str | LinkSpec, ids: Iterable[int]) -> list[int]:
+    """The controllers of `ids` that answer on the interface of a spec (its node is ignored); a scheme without
+    a scanner reports every id as present."""
+    spec = text if isinstance(text, LinkSpec) else parse_link_spec(text)
+    _load_builtin_schemes()
+    scheme = _SCHEMES.get(spec.scheme)
+    if scheme is None:
+        raise LinkError(f"link '{spec.text}': unknown scheme '{spec.scheme}' (known: {', '.join(link_schemes())})")
+    return scheme.scan(spec, ids) if scheme.scan is not None else list(ids)
 
 
 # --- the built-in schemes ---------------------------------------------------------------------------------------

@@ -46,7 +46,7 @@ def _config_io():
 def _link(w, controller_id: int | None = None):
     if controller_id is None:
         return w.bridge.link if w.development.connect_default() else None
-    return w.controllers.link(controller_id)
+    return w.controllers.link(controller_id, interface=w.connection.interface_key)
 
 
 def save_parameters(w, path: Path | None = None) -> bool:
@@ -77,8 +77,10 @@ class RestoreDialog(QDialog):
         super().__init__(parent)
         self.setWindowTitle(f"Restore from file — {path.name}")
         self.controller = QComboBox()
-        for cid in SIMULATED_IDS:
-            self.controller.addItem(f"Controller {cid}: simulated MCO 305", cid)
+        connection = parent.connection   # the controllers of this window's interface (DG 2894-2900)
+        iface = parent.controllers.interfaces.get(connection.interface_key or "")
+        for cid in iface.found if iface else SIMULATED_IDS:
+            self.controller.addItem(f"Controller {cid}: {connection.interface_description}", cid)
         self.controller.setCurrentIndex(max(0, self.controller.findData(controller_id)))
         self.checks = {name: QCheckBox(SET_LABELS[name]) for name in _config_io()[0].SETS}
         form = QFormLayout(self)
@@ -119,7 +121,8 @@ def restore_parameters(w, path: Path | None = None, controller_id: int | None = 
             return False
         controller_id, sets = dialog.controller_id(), dialog.sets()
     try:
-        transfer.download_config(w.controllers.link(controller_id), config, sets)
+        transfer.download_config(w.controllers.link(controller_id, interface=w.connection.interface_key), config,
+                                 sets)
     except (LinkError, zbc.ConfigError, ValueError) as exc:
         w.messages.ide(f"Restore from file: controller {controller_id}: {exc}")
         return False

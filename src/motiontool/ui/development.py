@@ -28,43 +28,25 @@ class Development:
     def __init__(self, window) -> None:
         self.w = window
 
-    # --- connection ----------------------------------------------------------------------------------
+    # --- connection (ui/connection.py) ------------------------------------------------------------------
     def connect_default(self) -> bool:
         """DG 2054-2062: commands that need a controller connect first — to the controller this window had
         (after a lost connection, DG 2064-2066), else to the default one."""
-        if self.w.bridge.connected:
-            return True
-        return self.select_controller(self.w.bridge.controller_id)
+        return self.w.connection.connect_default()
 
-    def select_controller(self, controller_id: int) -> bool:
+    def select_controller(self, controller_id: int, *, interface: str | None = None) -> bool:
         """Select Controller (DG 2536-2546): the window moves to another controller; the one it leaves keeps
         running its program."""
-        try:
-            link = self.w.controllers.link(controller_id)
-        except Exception as exc:  # noqa: BLE001 - any failure to open a link is reported, not raised
-            self.w.messages.ide(f"Connection to controller {controller_id} failed: {exc}")
-            return False
-        self.w.bridge.attach(link, f"Controller {controller_id}: simulated MCO 305 (embedded)",
-                             controller_id=controller_id)
-        self.w.messages.ide(f"Connected to controller {controller_id} (embedded simulator)")
-        return True
+        return self.w.connection.select(controller_id, interface=interface)
 
     def break_all(self) -> None:
-        """Break all (DG 2504-2514): abort the programs on every controller of this interface."""
-        for cid, link in self.w.controllers.open_links():
-            try:
-                link.break_program()
-            except LinkError as exc:
-                self.w.messages.ide(f"Controller {cid}: {exc}")
+        self.w.connection.break_all()
 
     def start_all(self) -> None:
-        """Start all (DG 2516-2518): start the downloaded program on every connected controller."""
-        for cid, link in self.w.controllers.open_links():
-            try:
-                if link.status().program_state != "running":
-                    link.start()
-            except LinkError as exc:
-                self.w.messages.ide(f"Controller {cid}: {exc}")
+        self.w.connection.start_all()
+
+    def delete_programs_all(self) -> None:
+        self.w.connection.delete_programs_all()
 
     # --- compile ---------------------------------------------------------------------------------------
     def compile_current(self, *, debug: bool = False) -> CheckOutcome | None:
@@ -160,14 +142,14 @@ class Development:
         try:
             self.w.bridge.link.break_program()
         except LinkError as exc:
-            self.w.messages.ide(f"Controller 1: {exc}")
+            self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: {exc}")
 
     def continue_program(self) -> None:
         if self.connect_default():
             try:
                 self.w.bridge.link.continue_program()
             except LinkError as exc:
-                self.w.messages.ide(f"Controller 1: {exc}")
+                self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: {exc}")
 
     def execute_line(self, line: str) -> None:
         """Command List → Execute now: the line runs as a one-line temporary program."""
@@ -182,4 +164,4 @@ class Development:
             self.w.bridge.link.download(result.image.to_bytes(), name="command")
             self.w.bridge.link.start()
         except LinkError as exc:
-            self.w.messages.ide(f"Controller 1: {exc}")
+            self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: {exc}")

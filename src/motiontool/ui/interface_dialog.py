@@ -1,39 +1,221 @@
-"""Settings → Interface / Development → Select Controller: the link kinds that exist (ide-spec 2.12)."""
+"""Settings → Interface (DG 3087-3111) and Development → Select Controller (DG 2536-2546).
+
+Settings → Interface: the interface type, its port or URL, baud rate and controller ID scan range; one type is the
+default (Esc and commands without a controller connect through it). Changes affect only new connections.
+Select Controller: a tree of the open interfaces and their controllers; an Interface drop-down with Open Interface
+opens another one (without changing the default).
+"""
 
 from __future__ import annotations
 
-from PySide6.QtWidgets import QDialog, QDialogButtonBox, QLabel, QListWidget, QListWidgetItem, QVBoxLayout
+from dataclasses import replace
 
-from motiontool.ui.controllers import SIMULATED_IDS
+from PySide6.QtCore import QSettings, Qt
+from PySide6.QtWidgets import (
+    QCheckBox,
+    QComboBox,
+    QDialog,
+    QDialogButtonBox,
+    QFormLayout,
+    QHBoxLayout,
+    QLabel,
+    QPushButton,
+    QSpinBox,
+    QTreeWidget,
+    QTreeWidgetItem,
+    QVBoxLayout,
+)
 
-LINK_KINDS = [(f"embedded:{n}", f"Simulated MCO 305 — controller {n} (embedded)", True) for n in SIMULATED_IDS] + [
-    ("fc-serial", "RS-485 FC protocol (serial)", False),
-    ("canopen", "CANopen", False),
-]
+from motiontool.ui.controllers import BAUDS, SIMULATED_IDS, ControllerRegistry, InterfaceConfig
+
+KINDS = {"sim": "Simulator (embedded MCO 305)", "fc": "FC protocol (RS-485 / USB)"}
+DEFAULTS = {"sim": InterfaceConfig("sim", "", 9600, 1, len(SIMULATED_IDS)),
+            "fc": InterfaceConfig("fc", "/dev/ttyUSB0", 9600, 1, 8)}
+ROLE = Qt.ItemDataRole.UserRole
 
 
-class InterfaceDialog(QDialog):
-    def __init__(self, parent=None):
+# --- settings --------------------------------------------------------------------------------------------------
+def load_interfaces(settings: QSettings) -> tuple[dict[str, InterfaceConfig], str]:
+    """({kind: configuration}, the default kind) from the settings file (defaults where missing or damaged)."""
+    configs = {}
+    for kind, default in DEFAULTS.items():
+        try:
+            configs[kind] = InterfaceConfig(
+                kind, str(settings.value(f"interface/{kind}/port", default.port)),
+                int(settings.value(f"interface/{kind}/baud", default.baud)),
+                int(settings.value(f"interface/{kind}/first", default.first)),
+                int(settings.value(f"interface/{kind}/last", default.last)))
+        except (TypeError, ValueError):
+            configs[kind] = default
+    kind = str(settings.value("interface/default", "sim"))
+    return configs, kind if kind in configs else "sim"
+
+
+def save_interface(settings: QSettings, config: InterfaceConfig, *, default: bool) -> None:
+    for name in ("port", "baud", "first", "last"):
+        settings.setValue(f"interface/{config.kind}/{name}", getattr(config, name))
+    if default:
+        settings.setValue("interface/default", config.kind)
+
+
+def serial_ports() -> list[str]:
+    """The serial ports of this computer (USB adapters, COM ports), for the port drop-down."""
+    try:
+        from serial.tools import list_ports
+    except ImportError:
+        return []
+    return sorted(p.device for p in list_ports.comports())
+
+
+class InterfaceSettingsDialog(QDialog):
+    """Settings → Interface."""
+
+    def __init__(self, parent, settings: QSettings):
+        super().__init__(parent)
+        self.setWindowTitle("Interface")
+        self.settings = settings
+        self.configs, self.default_kind = load_interfaces(settings)
+        self.kind = QComboBox()
+        for kind, text in KINDS.items():
+            self.kind.addItem(text, kind)
+        self.port = QComboBox()
+        self.port.setEditable(True)
+        self.port.addItems(serial_ports())
+        self.port.setToolTip("a serial port (/dev/ttyUSB0, COM3) or any pyserial URL (socket://HOST:PORT)")
+        self.baud = QComboBox()
+        for baud in BAUDS:
+            self.baud.addItem(str(baud), baud)
+        self.first, self.last = QSpinBox(), QSpinBox()
+        for box in (self.first, self.last):
+            box.setRange(1, 126)
+        self.default = QCheckBox("Default interface (used by Esc and by commands without a controller)")
+        form = QFormLayout()
+        form.addRow("Interface type:", self.kind)
+        form.addRow("Port or URL:", self.port)
+        form.addRow("Baud rate:", self.baud)
+        scan = QHBoxLayout()
+        scan.addWidget(self.first)
+        scan.addWidget(QLabel("to"))
+        scan.addWidget(self.last)
+        form.addRow("Controller ID scan range:", scan)
+        form.addRow(self.default)
+        note = QLabel("Changes affect only new connections; connected controllers stay connected.")
+        note.setWordWrap(True)
+        self.buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Ok | QDialogButtonBox.StandardButton.Cancel)
+        self.buttons.accepted.connect(self.accept)
+        self.buttons.rejected.connect(self.reject)
+        layout = QVBoxLayout(self)
+        layout.addLayout(form)
+        layout.addWidget(note)
+        layout.addWidget(self.buttons)
+        self._shown = None
+        self.kind.currentIndexChanged.connect(self._kind_changed)
+        self.kind.setCurrentIndex(self.kind.findData(self.default_kind))
+        self._kind_changed(self.kind.currentIndex())
+
+    def _kind_changed(self, _index: int) -> None:
+        if self._shown is not None:                # keep what was typed for the type we leave
+            self.configs[self._shown] = self._read(self._shown)
+        kind = self.kind.currentData()
+        config = self.configs[kind]
+        self.port.setEditText(config.port)
+        self.baud.setCurrentIndex(max(0, self.baud.findData(config.baud)))
+        self.first.setValue(config.first)
+        self.last.setValue(config.last)
+        self.default.setChecked(kind == self.default_kind)
+        wire = kind != "sim"
+        self.port.setEnabled(wire)
+        self.baud.setEnabled(wire)
+        self._shown = kind
+
+    def _read(self, kind: str) -> InterfaceConfig:
+        first, last = sorted((self.first.value(), self.last.value()))
+        return replace(self.configs[kind], port=self.port.currentText().strip(), baud=int(self.baud.currentData()),
+                       first=first, last=last)
+
+    def config(self) -> InterfaceConfig:
+        return self._read(self.kind.currentData())
+
+    def accept(self) -> None:
+        config = self.config()
+        if config.kind != "sim" and not config.port:
+            self.port.setFocus()
+            return
+        save_interface(self.settings, config, default=self.default.isChecked())
+        super().accept()
+
+
+# --- Select Controller -------------------------------------------------------------------------------------------
+class SelectControllerDialog(QDialog):
+    """Development → Select Controller: interface → controllers; Open Interface adds another interface."""
+
+    def __init__(self, parent, registry: ControllerRegistry, settings: QSettings):
         super().__init__(parent)
         self.setWindowTitle("Select Controller")
-        self.list = QListWidget()
-        for key, text, available in LINK_KINDS:
-            item = QListWidgetItem(text if available else f"{text} — not available yet")
-            item.setData(256, key)
-            if not available:
-                item.setFlags(item.flags() & ~item.flags().ItemIsEnabled)
-            self.list.addItem(item)
-        self.list.setCurrentRow(0)
-        buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Ok | QDialogButtonBox.StandardButton.Cancel)
-        buttons.accepted.connect(self.accept)
-        buttons.rejected.connect(self.reject)
+        self.registry = registry
+        self.configs, _ = load_interfaces(settings)
+        self.tree = QTreeWidget()
+        self.tree.setHeaderLabels(["Interface / controller"])
+        self.interface = QComboBox()
+        for kind, text in KINDS.items():
+            self.interface.addItem(f"{text}: {self.configs[kind].description}", kind)
+        self.open_button = QPushButton("Open Interface")
+        self.open_button.clicked.connect(self.open_selected_interface)
+        self.message = QLabel("")
+        self.message.setWordWrap(True)
+        row = QHBoxLayout()
+        row.addWidget(QLabel("Interface:"))
+        row.addWidget(self.interface, 1)
+        row.addWidget(self.open_button)
+        self.buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Ok | QDialogButtonBox.StandardButton.Cancel)
+        self.buttons.accepted.connect(self.accept)
+        self.buttons.rejected.connect(self.reject)
+        self.tree.itemDoubleClicked.connect(lambda item, _column: self.accept() if item.data(0, ROLE) else None)
         layout = QVBoxLayout(self)
-        layout.addWidget(QLabel("Interface and controller:"))
-        layout.addWidget(self.list)
-        layout.addWidget(buttons)
+        layout.addWidget(self.tree)
+        layout.addLayout(row)
+        layout.addWidget(self.message)
+        layout.addWidget(self.buttons)
+        self.resize(520, 360)
+        if not registry.interfaces:
+            registry.open_interface()
+        self.fill()
 
-    def selected_kind(self) -> str:
-        return self.list.currentItem().data(256)
+    def fill(self) -> None:
+        self.tree.clear()
+        first = None
+        for key, iface in self.registry.interfaces.items():
+            top = QTreeWidgetItem([iface.config.description])
+            self.tree.addTopLevelItem(top)
+            for cid in iface.found:
+                item = QTreeWidgetItem([f"Controller {cid}"])
+                item.setData(0, ROLE, (key, cid))
+                top.addChild(item)
+                first = first or item
+            if not iface.found:
+                top.addChild(QTreeWidgetItem([f"no controller answered in {iface.config.first}..{iface.config.last}"]))
+            top.setExpanded(True)
+        if first is not None:
+            self.tree.setCurrentItem(first)
 
-    def selected_controller(self) -> int:
-        return int(self.selected_kind().split(":")[1])
+    def open_selected_interface(self) -> None:
+        """Open Interface (DG 2540): scan the chosen interface; the default interface stays as it is."""
+        config = self.configs[self.interface.currentData()]
+        try:
+            iface = self.registry.open_interface(config=config)
+        except Exception as exc:  # noqa: BLE001 - a port that cannot be opened is reported in the dialog
+            self.message.setText(f"{config.description}: {exc}")
+            return
+        self.message.setText(f"{config.description}: {len(iface.found)} controller(s) in "
+                             f"{config.first}..{config.last}")
+        self.fill()
+
+    def selected(self) -> tuple[str, int] | None:
+        item = self.tree.currentItem()
+        return item.data(0, ROLE) if item is not None else None
+
+    def accept(self) -> None:
+        if self.selected() is None:
+            self.message.setText("Choose a controller")
+            return
+        super().accept()

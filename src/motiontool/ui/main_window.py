@@ -38,16 +38,16 @@ class MainWindow(QMainWindow):
 
     ask_to_save = True  # tests and scripted runs switch the "Save changes?" question off
 
-    def __init__(self, settings: QSettings | None = None, realtime_factor: float = 1.0) -> None:
+    def __init__(self, settings: QSettings | None = None, realtime_factor: float = 1.0, controllers=None) -> None:
         super().__init__()
         self.settings = settings or QSettings()
         self.realtime_factor = realtime_factor
         self.setWindowTitle("motiontool — APOSS")
         self.resize(1180, 760)
         self.actions_by_text: dict[str, QAction] = {}
-        from motiontool.ui.controllers import ControllerRegistry
+        from motiontool.ui.connection import new_registry
 
-        self.controllers = ControllerRegistry(realtime_factor)
+        self.controllers = controllers or new_registry(self.settings, realtime_factor)  # shared by its windows
         self.bridge = LinkBridge(self)
         self.development = Development(self)
         self.bookmark_store = BookmarkStore(Path(self._config_dir()) / "bookmarks.json")
@@ -73,6 +73,9 @@ class MainWindow(QMainWindow):
         self.cursor_label = QLabel("1:1")
         self.controller_label = QLabel("Controller: not connected")
         self.statusBar().addPermanentWidget(self.controller_label)
+        from motiontool.ui.connection import Connection
+
+        self.connection = Connection(self)
         self.statusBar().addPermanentWidget(self.cursor_label)
 
         from motiontool.ui.debugger import Debugger
@@ -269,8 +272,7 @@ class MainWindow(QMainWindow):
         self.settings.setValue("window/geometry", self.saveGeometry())
         self.settings.setValue("window/state", self.saveState())
         self.messages.stop_log()
-        self.bridge.detach(close=False)
-        self.controllers.close()
+        self.connection.window_closed()
         event.accept()
 
     # --- live diagnostics, outline ---------------------------------------------------------------------------
@@ -346,8 +348,9 @@ class MainWindow(QMainWindow):
     def _connection_changed(self, state: str) -> None:
         if state == "lost":
             cid = self.bridge.controller_id
-            self.controller_label.setText(f"Controller {cid}: Lost connection")
-            self.messages.ide(f"Lost connection to controller {cid}!")
+            self.controller_label.setText(f"Controller {cid} ({self.connection.interface_description}): "
+                                          "Lost connection")
+            self.connection.lost()
         elif state == "closed":
             self.controller_label.setText("Controller: not connected")
         self._update_title()
@@ -355,13 +358,7 @@ class MainWindow(QMainWindow):
     def _update_title(self) -> None:
         editor = self.current_editor()
         name = self.tabs.tabText(self.tabs.currentIndex()) if editor is not None else "APOSS"
-        controller = ""
-        if self.bridge.connected:
-            status = self.bridge.last_status
-            controller = f" [Controller: {self.bridge.controller_id} embedded]"
-            if status is not None and status.error:
-                controller += f" — error {status.error}"
-        self.setWindowTitle(f"motiontool — {name}{controller}")
+        self.setWindowTitle(f"motiontool — {name}{self.connection.title_suffix()}")
 
     def about(self) -> None:
         QMessageBox.about(self, "About motiontool",

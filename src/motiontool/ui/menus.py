@@ -58,10 +58,10 @@ def build_menus(w) -> None:
             ("Watch Stop", None, w.debugger.watch_stop), None, ("&Syntax Check", "F4", dev.syntax_check),
             ("Compile to file...", None, lambda: dev.compile_to_file()), None,
             ("Break all", None, dev.break_all), ("Start all", None, dev.start_all), ("Download all", None, None),
-            ("Delete Programs all", None, None), None, ("Select Controller...", None, lambda: _select_controller(w)),
-            ("Close Interface", None,
-             lambda: (w.controllers.close(controller_id=w.bridge.controller_id), w.bridge.detach())),
-            ("Close All Interfaces", None, lambda: (w.controllers.close(), w.bridge.detach())), None,
+            ("Delete Programs all", None, dev.delete_programs_all), None,
+            ("Select Controller...", None, lambda: _select_controller(w)),
+            ("Close Interface", None, w.connection.close_interface),
+            ("Close All Interfaces", None, w.connection.close_all), None,
             ("Command List...", "F12", lambda: _command_list(w)),
         ]),
         ("&Controller", [
@@ -79,9 +79,10 @@ def build_menus(w) -> None:
         ("&Settings", [
             ("&Editor...", None, lambda: _editor_settings(w)), ("&Compiler...", None, None),
             ("Open last file", None, "open_last"),
-            ("&Interface...", None, lambda: _select_controller(w)), ("&Language...", None, None),
+            ("&Interface...", None, lambda: _interface_settings(w)), ("&Language...", None, None),
         ]),
-        ("&Window", [("&Cascade", None, None), ("Tile &vertically", None, None), ("Tile &horizontally", None, None)]),
+        ("&Window", [("&New APOSS Window", None, lambda: _new_window(w)), ("&Cascade", None, None),
+                     ("Tile &vertically", None, None), ("Tile &horizontally", None, None)]),
         ("&Help", [
             ("&Contents", "F1", None), ("&Index", None, None), ("&SDO Dictionary", "F11", None), None,
             ("&About Program", None, w.about),
@@ -199,11 +200,30 @@ def _array_editor(w) -> None:
 
 
 def _select_controller(w) -> None:
-    from motiontool.ui.interface_dialog import InterfaceDialog
+    """Development → Select Controller (DG 2536-2546)."""
+    from motiontool.ui.interface_dialog import SelectControllerDialog
 
-    dialog = InterfaceDialog(w)
+    dialog = SelectControllerDialog(w, w.controllers, w.settings)
     if dialog.exec():
-        w.development.select_controller(dialog.selected_controller())
+        key, cid = dialog.selected()
+        w.development.select_controller(cid, interface=key)
+
+
+def _interface_settings(w) -> None:
+    """Settings → Interface (DG 3087-3111): new connections use it; connected controllers stay."""
+    from motiontool.ui.interface_dialog import InterfaceSettingsDialog, load_interfaces
+
+    if InterfaceSettingsDialog(w, w.settings).exec():
+        configs, default = load_interfaces(w.settings)
+        w.controllers.set_default(configs[default])
+        w.messages.ide(f"Default interface: {configs[default].description} (controllers "
+                       f"{configs[default].first}..{configs[default].last}); it is used for new connections")
+
+
+def _new_window(w) -> None:
+    from motiontool.ui.connection import new_window
+
+    w.other_windows = [o for o in getattr(w, "other_windows", []) if o.isVisible()] + [new_window(w)]
 
 
 def _error_history(w) -> None:

@@ -188,6 +188,16 @@ def scan(bus: FcBus, addresses, fmt: int | None = None) -> list[int]:
     return found
 
 
+def scan_spec(spec: LinkSpec, addresses) -> list[int]:
+    """The addresses that answer on the bus of a spec (for the IDE's controller ID scan range)."""
+    spec.check_options(OPTIONS)
+    bus = FcBus.open(bus_settings(spec))
+    try:
+        return scan(bus, addresses, spec.option("format", None, int))
+    finally:
+        bus.release()
+
+
 register_link_scheme("fc", open_fc, "fc:URL[#ADDRESS][,baud=N,parity=E|N|O,timeout=S,retries=N]",
                      "FC protocol over RS-485/USB or any pyserial URL, e.g. fc:/dev/ttyUSB0#1, "
-                     "fc:socket://127.0.0.1:4001#2")
+                     "fc:socket://127.0.0.1:4001#2", scan=scan_spec)

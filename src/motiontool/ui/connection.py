@@ -1,0 +1,223 @@
+"""The controller of one APOSS window and the commands for every controller of its interface (ide-spec 2.2-2.13).
+
+- A window is connected to one controller of one interface; the title shows the controller ID and the interface
+  (DG 2011), the status bar the connection state. One controller belongs to one window at a time: selecting it in
+  another window moves it there (DG 2546).
+- Break all, Start all and Delete Programs all act on the controllers of this window's interface within its ID scan
+  range — also those no window is connected to (DG 2504-2534).
+- Close Interface closes every controller of this window's interface after saying which; Close All Interfaces all
+  of them, in every window (DG 2548-2552).
+- A lost connection is reported in the Communication pane and the status bar, which offers Reconnect; Esc or any
+  command that needs the controller reconnects to the same controller on the same interface (DG 2064-2066).
+"""
+
+from __future__ import annotations
+
+from PySide6.QtWidgets import QToolButton
+
+from motiontool.comms.protocol import LinkError
+
+
+class Connection:
+    def __init__(self, window) -> None:
+        self.w = window
+        self.registry = window.controllers
+        self.interface_key: str | None = None      # the interface of the window's controller (kept when lost)
+        self.lost_reason = ""
+        self.reconnect_button = QToolButton(window)
+        self.reconnect_button.setText("Reconnect")
+        self.reconnect_button.setToolTip("Connect again to the same controller on the same interface")
+        self.reconnect_button.clicked.connect(lambda *_: self.reconnect())
+        self.reconnect_button.hide()
+        window.statusBar().addPermanentWidget(self.reconnect_button)
+        self.registry.windows.append(window)
+        self.registry.closed_listeners.append(self._closed)
+
+    # --- what the window shows ---------------------------------------------------------------------------
+    @property
+    def interface_description(self) -> str:
+        iface = self.registry.interfaces.get(self.interface_key or "")
+        return iface.config.description if iface else self.registry.default.description
+
+    def title_suffix(self) -> str:
+        """" [Controller: 1 FC: /dev/ttyUSB0 9600 baud]" while connected, " [Controller: 1 … — Lost connection]"
+        after a loss (the window stays bound to its controller), "" before the first connection."""
+        bridge = self.w.bridge
+        if bridge.connected:
+            text = f" [Controller: {bridge.controller_id} {self.interface_description}]"
+            status = bridge.last_status
+            if status is not None and status.error:
+                text += f" — error {status.error}"
+            return text
+        if self.lost_reason:
+            return f" [Controller: {bridge.controller_id} {self.interface_description} — Lost connection]"
+        return ""
+
+    # --- connecting ----------------------------------------------------------------------------------------
+    def select(self, controller_id: int, *, interface: str | None = None) -> bool:
+        """Connect this window to a controller (the default interface when none is named); the controller it
+        leaves keeps running its program; a controller another window holds moves here."""
+        key = interface or self.registry.default.key
+        try:
+            link = self.registry.link(controller_id, interface=key)
+            ident = link.call("identify")
+        except (LinkError, ValueError, OSError) as exc:
+            self.w.messages.ide(f"Connection to controller {controller_id} failed: {exc}")
+            return False
+        holder = self.registry.owners.get((key, controller_id))
+        if holder is not None and holder is not self.w:
+            holder.connection.release(f"controller {controller_id} moved to another APOSS window")
+        if self.w.bridge.connected:
+            self.registry.owners.pop((self.interface_key, self.w.bridge.controller_id), None)
+        self.registry.owners[(key, controller_id)] = self.w
+        self.interface_key = key
+        self.lost_reason = ""
+        self.reconnect_button.hide()
+        description = self.interface_description
+        self.w.bridge.attach(link, f"Controller {controller_id} ({description})", controller_id=controller_id)
+        # ide-spec 2.37: the identity and firmware version on connect
+        self.w.messages.ide(f"Connected to controller {controller_id} [{description}] "
+                            f"{ident.get('product', '?')}, {ident.get('firmware', '?')}")
+        return True
+
+    def connect_default(self) -> bool:
+        """Commands that need a controller connect first: to this window's controller after a loss, else to the
+        default interface's controller."""
+        if self.w.bridge.connected:
+            return True
+        return self.select(self.w.bridge.controller_id, interface=self.interface_key)
+
+    def reconnect(self) -> bool:
+        return self.select(self.w.bridge.controller_id, interface=self.interface_key)
+
+    def release(self, why: str) -> None:
+        """Let go of the controller (its link stays open for whoever takes it)."""
+        if self.w.bridge.connected:
+            self.registry.owners.pop((self.interface_key, self.w.bridge.controller_id), None)
+            self.w.bridge.detach(close=False)
+            if why:
+                self.w.messages.ide(why[:1].upper() + why[1:])
+
+    def lost(self) -> None:
+        """The bridge found the link dead: say so, offer Reconnect (the window stays bound to the controller)."""
+        cid = self.w.bridge.controller_id
+        self.registry.owners.pop((self.interface_key, cid), None)
+        self.lost_reason = "no answer"
+        self.reconnect_button.show()
+        self.w.messages.ide(f"Lost connection to controller {cid} ({self.interface_description})! Press Esc or "
+                            "Reconnect to connect again.")
+
+    def window_closed(self) -> None:
+        """The window closes: its controller stays open for the other windows; the last window closes all."""
+        self.release("")
+        if self._closed in self.registry.closed_listeners:
+            self.registry.closed_listeners.remove(self._closed)
+        if self.w in self.registry.windows:
+            self.registry.windows.remove(self.w)
+        if not self.registry.windows:
+            self.registry.close()
+
+    def _closed(self, key: str, ids: list[int]) -> None:
+        if key == self.interface_key and self.w.bridge.connected and self.w.bridge.controller_id in ids:
+            self.w.bridge.detach(close=False)
+
+    # --- every controller of the interface -------------------------------------------------------------------
+    def _interface_links(self, *, all_in_range: bool):
+        """(id, link) of this window's interface: every controller found in its scan range, or the open ones."""
+        if not self.connect_default():
+            return []
+        iface = self.registry.interfaces.get(self.interface_key)
+        ids = iface.found if all_in_range else sorted(iface.links)
+        found = []
+        for cid in ids:
+            try:
+                found.append((cid, self.registry.link(cid, interface=self.interface_key)))
+            except (LinkError, ValueError) as exc:
+                self.w.messages.ide(f"Controller {cid}: {exc}")
+        return found
+
+    def _each(self, action, *, all_in_range: bool) -> list[int]:
+        done = []
+        for cid, link in self._interface_links(all_in_range=all_in_range):
+            try:
+                if action(link):
+                    done.append(cid)
+            except LinkError as exc:
+                self.w.messages.ide(f"Controller {cid}: {exc}")
+        return done
+
+    def break_all(self) -> list[int]:
+        """Break all (DG 2504-2514)."""
+        def stop(link) -> bool:
+            if link.status().program_state != "running":
+                return False
+            link.break_program()
+            return True
+        done = self._each(stop, all_in_range=True)
+        self.w.messages.ide(f"Break all: stopped the programs of controllers {_ids(done)}" if done
+                            else "Break all: no program was running")
+        return done
+
+    def start_all(self) -> list[int]:
+        """Start all (DG 2516-2518): Execute on every connected controller of the interface."""
+        def start(link) -> bool:
+            if link.status().program_state == "running":
+                return False
+            link.start()
+            return True
+        done = self._each(start, all_in_range=False)
+        self.w.messages.ide(f"Start all: started controllers {_ids(done)}" if done else "Start all: nothing started")
+        return done
+
+    def delete_programs_all(self) -> list[int]:
+        """Delete Programs all (DG 2528-2534): the saved programs of every controller of the interface."""
+        def delete(link) -> bool:
+            programs = link.call("list_programs")
+            for program in programs:
+                link.call("delete_program", number=program["number"])
+            return bool(programs)
+        done = self._each(delete, all_in_range=True)
+        self.w.messages.ide(f"Delete Programs all: deleted the programs of controllers {_ids(done)}" if done
+                            else "Delete Programs all: no saved programs")
+        return done
+
+    def close_interface(self) -> None:
+        """Close Interface (DG 2548-2550): every controller of this window's interface, after saying which."""
+        key = self.interface_key
+        iface = self.registry.interfaces.get(key or "")
+        if iface is None:
+            self.w.messages.ide("Close Interface: no interface is open in this window")
+            return
+        self.w.messages.ide(f"Close Interface: closing the connections to controllers {_ids(sorted(iface.links))} "
+                            f"on {iface.config.description}")
+        self.registry.close(interface=key)
+
+    def close_all(self) -> None:
+        """Close All Interfaces (DG 2552): every controller on every interface, in every window."""
+        closed = self.registry.close()
+        names = ", ".join(f"{cid} ({key})" for key, cid in closed) or "none"
+        self.w.messages.ide(f"Close All Interfaces: closed the connections to controllers {names}")
+
+
+def _ids(ids: list[int]) -> str:
+    return ", ".join(str(i) for i in ids) or "none"
+
+
+
+def new_registry(settings, realtime_factor: float):
+    """The interfaces of a first APOSS window; its default interface comes from Settings → Interface (windows
+    opened from it share its registry)."""
+    from motiontool.ui.controllers import ControllerRegistry
+    from motiontool.ui.interface_dialog import load_interfaces
+
+    configs, default = load_interfaces(settings)
+    return ControllerRegistry(realtime_factor=realtime_factor, default=configs[default])
+
+
+def new_window(w):
+    """Window → New APOSS Window (DG 1999): another program and another controller, the same interfaces."""
+    other = type(w)(settings=w.settings, realtime_factor=w.realtime_factor, controllers=w.controllers)
+    other.ask_to_save = w.ask_to_save
+    other.new_file()
+    other.show()
+    return other
