@@ -70,3 +70,56 @@ class DrivePool:
     def close(self) -> None:
         if self.spare is not None:
             self.spare.stop()
+
+
+class PausableProxy:
+    """A TCP relay on 127.0.0.1 between a master and a drive whose line can be cut and restored (a pulled cable):
+    while paused, bytes in both directions are thrown away."""
+
+    def __init__(self, target_port: int):
+        import socket
+        import threading
+
+        self.target_port = target_port
+        self.paused = threading.Event()
+        self.server = socket.create_server(("127.0.0.1", 0))
+        self.port = self.server.getsockname()[1]
+        self._stop = threading.Event()
+        threading.Thread(target=self._accept, daemon=True).start()
+
+    def _accept(self):
+        import socket
+        import threading
+
+        self.server.settimeout(0.1)
+        while not self._stop.is_set():
+            try:
+                client, _ = self.server.accept()
+            except TimeoutError:
+                continue
+            except OSError:
+                return
+            upstream = socket.create_connection(("127.0.0.1", self.target_port))
+            for a, b in ((client, upstream), (upstream, client)):
+                threading.Thread(target=self._pump, args=(a, b), daemon=True).start()
+
+    def _pump(self, source, sink):
+        source.settimeout(0.1)
+        while not self._stop.is_set():
+            try:
+                data = source.recv(4096)
+            except TimeoutError:
+                continue
+            except OSError:
+                return
+            if not data:
+                return
+            if not self.paused.is_set():
+                try:
+                    sink.sendall(data)
+                except OSError:
+                    return
+
+    def close(self):
+        self._stop.set()
+        self.server.close()

@@ -152,3 +152,32 @@ def test_a_lost_drive_is_reported_and_reconnect_offered(window, qtbot):
         assert f"[Controller: 1 FC: {url}]" in window.windowTitle()
         window.bridge.detach(close=False)
         window.controllers.close()
+
+
+def test_a_link_timeout_stops_the_program_on_the_drive_and_the_ide_says_so(window, qtbot):
+    """Issue 14 "Faults": on link loss the drive reacts as configured (--timeout, --timeout-reaction stop) and the
+    tool says so when the line is back."""
+    from tests.comms.drive_process import PausableProxy
+
+    with drive_process("--node", "1", "--timeout", "0.5", "--timeout-reaction", "stop") as drive:
+        proxy = PausableProxy(int(drive.url.rsplit(":", 1)[1]))
+        try:
+            url = f"socket://127.0.0.1:{proxy.port}"
+            set_fc_interface(qtbot, window, url, 1, 1)
+            select_controller(qtbot, window, "Controller 1")
+            execute(qtbot, window, 'PRINT "up"\nmain:\nDELAY 10\nGOTO main\n')
+            qtbot.waitUntil(lambda: "[01] up" in window.messages.toPlainText(), timeout=10000)
+            proxy.paused.set()                                   # the cable is pulled
+            qtbot.waitUntil(lambda: not window.bridge.connected, timeout=10000)
+            qtbot.wait(600)
+            proxy.paused.clear()                                 # and plugged in again
+            qtbot.mouseClick(window.connection.reconnect_button, Qt.MouseButton.LeftButton)
+            assert window.bridge.connected
+            qtbot.waitUntil(lambda: "program was stopped (timeout reaction: stop)" in window.messages.toPlainText(),
+                            timeout=10000)
+            assert "[01] link timeout: no request from the master for 0.5 s" in window.messages.toPlainText()
+            assert window.bridge.link.status().program_state == "break"
+        finally:
+            window.bridge.detach(close=False)
+            window.controllers.close()
+            proxy.close()

@@ -14,6 +14,7 @@ class Link(ABC):
     """A connection to one controller. Requests block until answered; events arrive at subscribers."""
 
     kind = "abstract"
+    status_interval_s = 0.0     # how often a display may ask for the status without loading the link
 
     def __init__(self) -> None:
         self._subscribers: list[Callable[[LinkEvent], None]] = []

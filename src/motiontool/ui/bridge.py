@@ -27,6 +27,7 @@ class LinkBridge(QObject):
         self._event.connect(self._dispatch)  # emitted from the kernel thread → queued into the GUI thread
         self._timer = QTimer(self)
         self._timer.setInterval(poll_ms)
+        self._poll_ms = poll_ms
         self._timer.timeout.connect(self.poll)
         self.last_status: Status | None = None
 
@@ -42,6 +43,8 @@ class LinkBridge(QObject):
         # Events are tagged with the controller they came from: after a switch, queued ones keep their ID.
         self._callback = lambda event, *, cid=controller_id: self._event.emit((cid, event))
         link.subscribe(self._callback)
+        # a slow line (FC at 9600 baud) is asked for the status less often than the simulator
+        self._timer.setInterval(max(self._poll_ms, int(1000 * link.status_interval_s)))
         self._timer.start()
         self.connection_changed.emit("connected")
         self.poll()
@@ -83,3 +86,5 @@ class LinkBridge(QObject):
                 self.poll()
         elif event.kind == "samples":
             self.samples.emit(event.data)
+        elif event.kind == "message":  # the controller side tells something: a link timeout, events it dropped
+            self.program_event.emit(event.time_ms, event.text, cid)

@@ -166,3 +166,16 @@ def test_a_process_block_is_answered_with_the_status_word(served):
         assert link.bus.transact(fc.Telegram(0x01, None, 0, 0, (0, 0))).pcd[0] == 0x0803
     finally:
         link.close()
+
+
+def test_a_slow_line_is_polled_less_often(served):
+    """Event polls take at most a quarter of a serial line, status displays a tenth; a socket is not paced."""
+    drive, url = served
+    link = open_link(f"{url}#1,baud=9600")
+    try:
+        serial = url.startswith("fc:/dev/")
+        assert link.poll_interval_s == (pytest.approx(4 * 130 * 11 / 9600) if serial else 0.05)
+        assert link.status_interval_s == (pytest.approx(10 * 230 * 11 / 9600) if serial else 0.0)
+        assert link.bus.description.endswith("9600 baud") == serial
+    finally:
+        link.close()

@@ -106,9 +106,16 @@ class FcBus:
                 del FcBus._open[self.settings.key()]
 
     @property
+    def serial_line(self) -> bool:
+        """True when the bytes go over a serial line at `baud` (a port, or rfc2217:// to a remote port), False for
+        a raw socket (a converter's own baud rate is unknown here)."""
+        url = self.settings.url
+        return "://" not in url or url.startswith(("rfc2217://", "spy://", "loop://"))
+
+    @property
     def description(self) -> str:
         s = self.settings
-        line = "" if "://" in s.url else f" {s.baud} baud"
+        line = f" {s.baud} baud" if self.serial_line else ""
         return f"FC: {s.url}{line}"
 
     # --- telegrams ------------------------------------------------------------------------------------

@@ -7,7 +7,8 @@ is verified: the drive's answer echoes the value it now holds, and a different v
 
 Options (`fc:URL#ADDRESS,KEY=VALUE,…`): baud (default 9600, FC 300 8-32), parity E|N|O (8-33, default E),
 stopbits 1|2, timeout (s an answer may take beyond its time on the line, default 0.2), retries (default 3),
-format 1|2 (address format; default 1 for addresses 1..31, 2 above), poll (event poll interval in s).
+format 1|2 (address format; default 1 for addresses 1..31, 2 above), poll (event poll interval in s; by default
+a quarter of the line at most).
 """
 
 from __future__ import annotations
@@ -31,6 +32,7 @@ from motiontool.comms.fc.telegram import (
     Telegram,
     encode_address,
     parameter,
+    wire_time,
 )
 from motiontool.comms.links import LinkSpec, register_link_scheme
 from motiontool.comms.protocol import ConnectionLost, LinkError, Request
@@ -55,6 +57,8 @@ class FcLink(RemoteLink):
         self.adr = encode_address(address, fmt=fmt)
         self.channel = MasterChannel(self._transfer, MAX_CHUNK, first_seq=random.getrandbits(16))
         super().__init__(self.channel.exchange, f"{bus.description} #{address}", poll_interval_s)
+        # a status request and its answer are ~230 bytes: at most a tenth of the line (2.6 s at 9600 baud)
+        self.status_interval_s = 10 * wire_time(230, bus.settings.baud) if bus.serial_line else 0.0
 
     # --- the extension ---------------------------------------------------------------------------------
     def _transfer(self, frame):
@@ -165,7 +169,13 @@ def open_fc(spec: LinkSpec) -> FcLink:
     if faults.active:  # a spoilt line is a different bus from the clean one on the same port
         settings.faults = faults
     bus = FcBus.open(settings, (lambda port: FaultyPort(port, faults)) if faults.active else None)
-    return FcLink(bus, address, fmt, spec.option("poll", POLL_INTERVAL_S, float))
+    return FcLink(bus, address, fmt, spec.option("poll", default_poll_interval(bus), float))
+
+
+def default_poll_interval(bus: FcBus) -> float:
+    """Event polls take at most a quarter of a serial line (an empty poll and its answer are ~130 bytes: 0.15 s at
+    9600 baud, so every 0.6 s; every 50 ms from 38400 baud on); a socket is polled every 50 ms."""
+    return max(POLL_INTERVAL_S, 4 * wire_time(130, bus.settings.baud)) if bus.serial_line else POLL_INTERVAL_S
 
 
 def scan(bus: FcBus, addresses, fmt: int | None = None) -> list[int]:
