@@ -2,11 +2,11 @@
 // Shows: TESTSETP, TESTSTART, SYSVAR 4097/4098/4102, DIM, interleaved samples, PRINT ;, CHR
 // Run: motiontool run 20_recording.m --seconds 10 --record rec.csv
 // Test-seconds: 10
-// Expect: t=0 ms: APOS 0, CPOS 0, TRACKERR 0
-// Expect: t=200 ms: APOS 600, CPOS 827, TRACKERR 227
-// Expect: t=400 ms: APOS 2801, CPOS 3293, TRACKERR 492
-// Expect: t=600 ms: APOS 6640, CPOS 7397, TRACKERR 757
-// Expect: t=800 ms: APOS 12118, CPOS 13140, TRACKERR 1022
+// Expect: t = 0 ms: APOS 0, CPOS 0, TRACKERR 0
+// Expect: t = 200 ms: APOS 600, CPOS 827, TRACKERR 227
+// Expect: t = 400 ms: APOS 2801, CPOS 3293, TRACKERR 492
+// Expect: t = 600 ms: APOS 6640, CPOS 7397, TRACKERR 757
+// Expect: t = 800 ms: APOS 12118, CPOS 13140, TRACKERR 1022
 // Expect: 80 ms |
 // Expect: 180 ms |##
 // Expect: 280 ms |###
@@ -45,7 +45,7 @@ DELAY 200                        // be sure the last samples are taken
 n = 1
 WHILE n <= 50 DO
     k = (n - 1) * 3
-    PRINT "t=", (n - 1) * 20, " ms: APOS ", rec[k + 1], ", CPOS ", rec[k + 2], ", TRACKERR ", rec[k + 3]
+    PRINT "t = ", (n - 1) * 20, " ms: APOS ", rec[k + 1], ", CPOS ", rec[k + 2], ", TRACKERR ", rec[k + 3]
     n = n + 10                   // every tenth sample is enough here
 ENDWHILE
 

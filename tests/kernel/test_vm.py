@@ -52,7 +52,7 @@ def test_bit_selectors_at_run_time():
     """DG 6730-6787: 7.1 = 1, 7.4 = 0, 0x027F.b1 = 127, .b2 = 2, 0x1FFFE.sb1 = -2; Value.3 = 1 → 4."""
     run = run_source("v = 7\nPRINT v.1, v.4\nw = 0x027F\nPRINT w.b1, w.b2\nq = 0x1FFFE\nPRINT q.sb1, q.ub1\n"
                      "value = 0\nvalue.3 = 1\nPRINT value\nvalue.b1 = 72\nvalue.b2 = 128\nPRINT value\n", 100)
-    assert run.prints == ["10", "1272", "-2254", "4", str(0x8048)]
+    assert run.prints == ["1 0", "127 2", "-2 254", "4", str(0x8048)]
 
 
 def test_loop_runs_n_plus_one_times():
@@ -166,6 +166,20 @@ def test_print_formats_and_semicolon():
     assert run.prints == ["a=5 b=2.5 cA", ""]
 
 
+def test_print_puts_a_blank_between_items_that_have_none():
+    """CR 229-240: `PRINT "Actual Position Reached", APOS` → "Actual Position Reached 2000"; CR 873-880: `PRINT
+    "Position after defining new origin", APOS` → "… origin 0". The manuals' programs bring their own blank
+    (DG 3380 `print "Hello: ",i`, CR 3805 `"Parameter ",para," has the length ",res`): no second one is added; no
+    blank before closing punctuation or around '=' and CHR(n); nothing between PRINTs joined by ';' (CR 3740 prints a
+    string character by character). Decision K48."""
+    run = run_source('POSA 2000\nDELAY 200\nPRINT "Actual Position Reached", APOS\ni = 1\nPRINT "Hello: ",i\n'
+                     'PRINT "Parameter ",1549," has the length ",7\nPRINT "Variable", 10,"Pos.:",2000\n'
+                     'PRINT "peak ", 5, ": done", 1.5, ", more (", 3, ")"\nPRINT "x", "=", 2, CHR(176), "C"\n'
+                     'PRINT "a";\nPRINT 1, 2;\nPRINT "b"\n', 1000)
+    assert run.prints == ["Actual Position Reached 2000", "Hello: 1", "Parameter 1549 has the length 7",
+                          "Variable 10 Pos.: 2000", "peak 5: done 1.5, more (3)", "x=2\xb0C", "a1 2b"]
+
+
 @pytest.mark.parametrize("source, number", [
     ("DIM a[3]\nx = a[4]\n", 171),
     ("DIM a[3]\na[0] = 1\n", 171),
@@ -218,3 +232,11 @@ def test_out_on_a_connector_pin():
     run = run_source("OUT X59/3 1\nPRINT IN 1\nOUT X34/9 1\n", 100)
     assert run.controller.io.outputs[3] == 1
     assert run.errors[0].number == 171
+
+
+def test_printdev_minus_one_stops_the_output():
+    """CR 3535-3550: "PRINTDEV can be used to disable all prints in a program without commenting them out one by one
+    … -1 = no output after that line"; `PRINTDEV 0` (DG 7116: "0 = standard") brings it back. Switching the device
+    prints no empty line."""
+    run = run_source('PRINT "one"\nPRINTDEV -1\nPRINT "two"\nPRINTDEV 0\nPRINT "three"\nPRINTDEV -1 "four"\n', 100)
+    assert run.prints == ["one", "three"]

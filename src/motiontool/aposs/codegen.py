@@ -378,7 +378,8 @@ class CodeGen(ExpressionCode):
             else:
                 self.expr(item)
                 self.emit(Op.PRINTV)
-        self.emit(Op.PRINTNL, int(s.newline))
+        if s.device is None or s.items:  # `PRINTDEV -1` alone only switches the device: no empty line
+            self.emit(Op.PRINTNL, int(s.newline))
 
     def s_If(self, s: ast.If) -> None:
         ends = []

@@ -496,6 +496,8 @@ class Controller:
         return self.arrays.dim(index, name, dims)
 
     def print_text(self, text: str) -> None:
+        if self.program_data.print_device == -1:  # CR 3535-3550: PRINTDEV -1 = "no output after that line"
+            return
         self._emit(Event("print", self.time_ms, text))
 
     def define_interrupt(self, vm: VM, index: int, operands: list[int]) -> None:

@@ -103,7 +103,8 @@ class VM:
     ended: bool = False
     nowait: bool = False
     stack_used: int = 0
-    print_line: list[str] = field(default_factory=list)
+    print_line: str = ""                                    # text of PRINT …; statements waiting for the line end
+    print_items: list[str] = field(default_factory=list)   # the items of the PRINT being executed
     instructions: int = 0
     skip_stop: bool = False
 
@@ -342,15 +343,17 @@ class VM:
                 self.host.interrupt_returned(self, ret.interrupt)
         elif op == Op.PRINTV:
             v = stack.pop()
-            self.print_line.append(format_value(v))
+            self.print_items.append(format_value(v))
         elif op == Op.PRINTS:
-            self.print_line.append(self.image.strings[arg])
+            self.print_items.append(self.image.strings[arg])
         elif op == Op.PRINTC:
-            self.print_line.append(chr(stack.pop() & 0xFF))
+            self.print_items.append(_Char(chr(stack.pop() & 0xFF)))
         elif op == Op.PRINTNL:
+            self.print_line += join_print_items(self.print_items)
+            self.print_items.clear()
             if arg:
-                self.host.print_text("".join(self.print_line))
-                self.print_line.clear()
+                self.host.print_text(self.print_line)
+                self.print_line = ""
         elif op == Op.INTR:
             info = self.image.interrupts[arg]
             count = int(info.has_value) + int(info.setout) + int(info.toin)
@@ -375,8 +378,8 @@ class VM:
             dest.data[:n] = src.data[:n]  # DG 6461-6486: copies min(size) elements
         elif op == Op.END:
             if self.print_line:
-                self.host.print_text("".join(self.print_line))
-                self.print_line.clear()
+                self.host.print_text(self.print_line)
+                self.print_line = ""
             self.ended = True
             self.pc -= 1
         elif op == Op.NOP:
@@ -443,6 +446,31 @@ def _typed(v, type_: str):
     if type_ == "double":
         return float(v)
     return semantics.to_long(v) if isinstance(v, float) else v
+
+
+_NO_BLANK_AFTER = " \t([{="
+_NO_BLANK_BEFORE = " \t,.;:!?)]}="
+
+
+class _Char(str):
+    """The text of a CHR(n) print item: part of the text around it, never separated."""
+
+
+def join_print_items(items: list[str]) -> str:
+    """The items of one PRINT: one blank between two of them, unless there is white space at that junction already
+    or the later item begins with a closing punctuation mark, the earlier ends with an opening bracket, either side is
+    '=' or an item is a CHR(n) character (decision K48). CR 229-240 prints `PRINT "Actual Position Reached", APOS`
+    as "Actual Position Reached 2000", while the manuals' programs write `PRINT "Hello: ",i` expecting one blank.
+    PRINTs joined by ';' get nothing between them (CR 3740 prints a string character by character)."""
+    text = ""
+    glued = True
+    for item in items:
+        char = isinstance(item, _Char)
+        if not (glued or char) and item and text[-1] not in _NO_BLANK_AFTER and item[0] not in _NO_BLANK_BEFORE:
+            text += " "
+        text += item
+        glued = char or not text
+    return text
 
 
 def format_value(v: int | float) -> str:
