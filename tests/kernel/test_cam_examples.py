@@ -22,8 +22,9 @@ from tests.kernel.helpers import start
 
 EXAMPLES = Path(__file__).parent / "cam_examples"
 MANUAL = Path(__file__).parents[1] / "aposs" / "manual"
-STAMPING, MARKER, SLAVESYNC = (MANUAL / name for name in ("D07_cam_stamping.m", "D08_cam_marker_correction.m",
-                                                          "D09_cam_slave_marker.m"))
+STAMPING, MARKER, SLAVESYNC, SLAVESYNC_PRINTED = (
+    MANUAL / name for name in ("D07_cam_stamping.m", "D08_cam_marker_correction.m", "D09_cam_slave_marker_corrected.m",
+                               "D09_cam_slave_marker.m"))
 QC_PER_MU = 2048 / 55          # DG 1420: "2048/55 qc = 1 MU" (SYNCFACTM / SYNCFACTS)
 QC_PER_UU = 25 / 9             # DG 1428: "25/9 qc = 1 UU" (POSFACT_Z / POSFACT_N)
 CONVEYOR = 4000 * QC_PER_MU / 1000  # DG 1442, 1452: 60 boxes/min of 4000 MU → master qc per ms

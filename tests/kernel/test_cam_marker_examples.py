@@ -15,7 +15,7 @@ from motiontool.kernel.master import MasterConfig
 from motiontool.kernel.plant import PlantConfig
 from tests.camcurve.conftest import marker_curve, slavesync_curve
 from tests.kernel.helpers import start
-from tests.kernel.test_cam_examples import MARKER, QC_PER_MU, SLAVESYNC, run_example, start_conveyor
+from tests.kernel.test_cam_examples import MARKER, QC_PER_MU, SLAVESYNC, SLAVESYNC_PRINTED, run_example, start_conveyor
 
 D06 = Path(__file__).parents[1] / "aposs" / "manual" / "D06_marker_sync.m"
 
@@ -80,6 +80,24 @@ ROLLER = {"SYNCFACTM": 25, "SYNCFACTS": 9, "MENCODER": 500, "POSFACT_Z": 2048, "
           "SYNCMPULSS": 3900, "SYNCMWINS": 200, "SYNCMTYPS": 2, "SYNCMTYPM": 2}
 UU = 2048 / 55
 SLIP = (0, 120, 40, 100, -50, 40, -60, 0, 30)  # UU: the boxes slip on the belt
+
+
+def test_slave_synchronisation_with_marker_as_printed_ends_and_does_not_engage():
+    """D9 as printed ends right after SYNCCSTART 1; DG 4054: "If the program is closed without the explicit command
+    SYNCCSTOP pnum slavepos, then the second point pair will always be used for disengaging" — the curve has no
+    second pair, so the conveyor stops where it stands and does not follow the roller (K49). The corrected copy adds
+    D7's empty main loop (DG 1488)."""
+    boxes = (30000.0,)
+    run = run_example(SLAVESYNC_PRINTED, slavesync_curve(), settings=ROLLER,
+                      master=MasterConfig(marker_period_qc=10000, marker_offset_qc=3000),
+                      plant=PlantConfig(home_switch_qc=2000, slave_marker_positions_qc=boxes))
+    ctl = run.controller
+    assert run.state == "ended" and not run.errors
+    start_conveyor(ctl, ramp_ms=500, speed=10000 / 3000)
+    run.advance(300)
+    stop = ctl.axis.cpos
+    run.advance(5000)
+    assert ctl.axis.mode == "idle" and ctl.axis.cpos == stop and ctl.master.mapos > 10000
 
 
 def test_slave_synchronisation_with_marker_brings_every_box_to_the_stamp_at_slave_position_1000():

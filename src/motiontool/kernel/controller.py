@@ -275,10 +275,24 @@ class Controller:
 
     def _end_program(self, state: str) -> None:
         self.program_state = state
+        self._motion_at_program_end()
         self._restore_parameters()
         self.interrupts.reset()
         self.recorder.active = None
         self._emit(Event("program", self.time_ms, f"program {state}"))
+
+    def _motion_at_program_end(self) -> None:
+        """A program ends (its last statement, EXIT, an error without handler; decision K49): a motion with a target
+        runs to it (CR 1340-1342: EXIT "ends a program where active positioning procedures are being carried out to
+        the end"); CAM disengages with the second start/stop pair (DG 4054), speed mode and SYNCV/SYNCP/SYNCM stop
+        with DEC: no program keeps them going (DG 1488: "Empty main loop so that program will not be terminated")."""
+        axis = self.axis
+        if axis.mode == "cam":
+            axis.sync.program_ended()
+        elif axis.mode in ("sync", "speed"):
+            from motiontool.kernel.commands import _limits
+
+            axis.stop(_limits(self), remember=False)
 
     # --- time ------------------------------------------------------------------------------------------
     def tick(self) -> None:
