@@ -114,7 +114,7 @@ def test_remote_link_carries_requests_and_polls_events_in_order():
     link.start()
     link.advance(200)
     link.flush_events()
-    assert seen == [f"n{i}" for i in range(100)]
+    assert seen == [f"n {i}" for i in range(100)]  # PRINT puts a blank between the items (K48)
     with pytest.raises(LinkError, match="no program 5"):
         link.start(5)
     link.close()
