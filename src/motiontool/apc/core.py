@@ -215,73 +215,78 @@ class KernelCore:
 
     def tick(self) -> None:
         """One POS sample (module docstring). Written for speed: it runs 1000-4000 times per simulated second."""
-        q = self.quarters
-        t_prev = self.time_ns
-        self.time_ns = t_now = t_prev + self.period_ns
         self.samples += 1
+        t_prev = self.time_ns
+        self.time_ns = t_prev + self.period_ns
         plant = self.plant
-        before = plant.position
         pipe = self._pipe
+        before = plant.position
         if plant.step(pipe[0], pipe[1], self.drive_enabled and not self.trip):
-            plant.update_marker_window()
-            for frac in plant.marker_crossings(before, plant.position):
-                self.fb.events.append((t_prev + round(frac * self.period_ns), "marker"))
+            self._markers_passed(before, t_prev)
         if self.slots.fitted:
             for slot in self.slots.fitted:
-                slot.advance(q)
-        counting = self.run_mode != 0
-        ref, fb = self.ref, self.fb
-        tb = self.turns_bits
+                slot.advance(self.quarters)
         pos0 = self.pos0
-        if counting:
-            ref.sample_start_position, ref.sample_start_integrated = ref.position, ref.integrated
-            fb.sample_start_position, fb.sample_start_integrated = fb.position, fb.integrated
+        if self.run_mode:
+            ref, fb, tb = self.ref, self.fb, self.turns_bits
             # a user-program source is written in POS0 (L3107-3110), so with a POS0 it is read after it only
             sel = ref.selector
             if sel == 0:
-                ref.refresh(plant.encoder_word(), tb)
+                ref.refresh(plant.encoder_word(), tb, True)
             elif sel != USER_PROGRAM or pos0 is None:
-                ref.refresh(self._source_word(ref, 0), tb)
+                ref.refresh(self._source_word(ref, 0), tb, True)
+            else:
+                ref.sample_start_position, ref.sample_start_integrated = ref.position, ref.integrated
             sel = fb.selector
             if sel == 0:
-                fb.refresh(plant.encoder_word(), tb)
+                fb.refresh(plant.encoder_word(), tb, True)
             elif sel != USER_PROGRAM or pos0 is None:
-                fb.refresh(self._source_word(fb, 0), tb)
-        if pos0 is not None:
-            self.task = "pos0"
-            pos0()
-            # what POS0 wrote counts in this sample (user-program words, filtered inputs: V01.03.03, L7219-7222)
-            if counting:
+                fb.refresh(self._source_word(fb, 0), tb, True)
+            else:
+                fb.sample_start_position, fb.sample_start_integrated = fb.position, fb.integrated
+            if pos0 is not None:
+                self.task = "pos0"
+                pos0()
+                # what POS0 wrote counts in this sample (user-program words, filtered inputs, L7219-7222)
                 if ref.selector == USER_PROGRAM:
-                    ref.refresh(ref.user_word, tb)
+                    ref.refresh(ref.user_word, tb, False)
                 elif ref.input_disabled:
-                    ref.refresh(ref.word, tb)
+                    ref.refresh(ref.word, tb, False)
                 if fb.selector == USER_PROGRAM:
-                    fb.refresh(fb.user_word, tb)
+                    fb.refresh(fb.user_word, tb, False)
                 elif fb.input_disabled:
-                    fb.refresh(fb.word, tb)
-        if counting:
-            # events of (t_(k-1), t_k] are latched now that this sample's positions are known, also those a
-            # user-program source received in POS0 (decision A13)
-            if ref.events:
-                for kind, main in ref.capture_events(t_prev, t_now, tb):
-                    if kind == "freeze" and self.action_on_freeze and self.run_mode == 2:
-                        self.reference = DIG_LOCK if self.action_on_freeze == 1 else CAM
-                        self._freeze_since = main
-                        self._active = None
-            if fb.events:
-                fb.capture_events(t_prev, t_now, tb)
+                    fb.refresh(fb.word, tb, False)
+            if ref.events or fb.events:
+                self._capture(t_prev)
             if self.run_mode == 2 and self._was_enabled and not self._reset_request:
                 self._enabled_sample()
-                self.enabled = 1
-                self.reset_status = 0
             else:
                 self._kernel()
+        elif pos0 is not None:
+            self.task = "pos0"
+            pos0()
         if self.pos1 is not None:
             self.task = "pos1"
             self.pos1()
         self.task = None
         self._latch_output()
+
+    def _markers_passed(self, before: float, t_prev: int) -> None:
+        plant = self.plant
+        plant.update_marker_window()
+        for frac in plant.marker_crossings(before, plant.position):
+            self.fb.events.append((t_prev + round(frac * self.period_ns), "marker"))
+
+    def _capture(self, t_prev: int) -> None:
+        """Latch the events of (t_(k-1), t_k] now that this sample's positions are known, also those a
+        user-program source received in POS0 (decision A13); a reference freeze may select DL or CAM."""
+        t_now, tb = self.time_ns, self.turns_bits
+        for kind, main in self.ref.capture_events(t_prev, t_now, tb):
+            if kind == "freeze" and self.action_on_freeze and self.run_mode == 2:
+                self.reference = DIG_LOCK if self.action_on_freeze == 1 else CAM
+                self._freeze_since = main
+                self._active = None
+        self.fb.capture_events(t_prev, t_now, tb)
 
     def _latch_output(self) -> None:
         channel = self.channel
@@ -326,8 +331,6 @@ class KernelCore:
                 self._after_reset = True
             return
         self._enabled_sample()
-        self.enabled = 1
-        self.reset_status = 0
 
     def _reset_values(self) -> tuple[int, int]:
         """Integrator reset values (Table 4-2): 0 or the source, plus the offsets."""
@@ -374,14 +377,15 @@ class KernelCore:
 
     def _enabled_sample(self) -> None:
         pg, q = self.pg, self.quarters
-        since = None
+        ref_now = self.ref.integrated
         if self._active != self.reference:
             since = self._freeze_since
             self._freeze_since = None
             self._enter(self.reference)
-        ref_now = self.ref.integrated
-        d_ref = ref_now - (self._ref_last if since is None else since)
-        if not -0x80000000 <= d_ref < 0x80000000:
+            d_ref = ref_now - (self._ref_last if since is None else since)
+        else:
+            d_ref = ref_now - self._ref_last
+        if (d_ref + 0x80000000) >> 32:          # outside int32: the reference wrapped
             d_ref = wrap32(d_ref)
         self._ref_last = ref_now
         active = self._active
@@ -412,15 +416,15 @@ class KernelCore:
             pg.to_speed(0, q)
         else:
             pg.to_position(self.stop_target, q, linear=self.stop_mode == LINEAR_STOP)
-        opg = self.opg
+        opg, tb = self.opg, self.turns_bits
         if self.offset_select or opg.position or opg.speed:
             self._run_offsets(q)
-            total = wrap32(pg.position + opg.position)
-            speed = round((pg.speed + opg.speed) * (1 << self.turns_bits))
+            self.loop.run(wrap32(pg.position + opg.position), round((pg.speed + opg.speed) * (1 << tb)),
+                          self.fb.integrated, tb)
         else:
-            total = pg.position
-            speed = round(pg.speed * (1 << self.turns_bits))
-        self.loop.run(total, speed, self.fb.integrated, self.turns_bits)
+            self.loop.run(pg.position, round(pg.speed * (1 << tb)), self.fb.integrated, tb)
+        self.enabled = 1
+        self.reset_status = 0
 
     def _run_offsets(self, q: int) -> None:
         opg = self.opg

@@ -44,13 +44,19 @@ class PositionLoop:
         ref = self.position_ref = self.ext_position if self.ext_pos_selected else profile_position
         speed = self.speed_ref = self.ext_speed if self.ext_speed_selected else profile_speed
         error = ref - feedback
-        if not -0x80000000 <= error < 0x80000000:
+        if (error + 0x80000000) >> 32:      # outside int32
             error = wrap32(error)
         self.error = error
-        p = self.kp * error << turns_bits
-        p = p // 400000 if p >= 0 else -(-p // 400000)
-        clamp = self.p_clamp
-        p = clamp if p > clamp else (-clamp if p < -clamp else p)
+        if error:
+            p = self.kp * error << turns_bits
+            p = p // 400000 if p >= 0 else -(-p // 400000)
+            clamp = self.p_clamp
+            if p > clamp:
+                p = clamp
+            elif p < -clamp:
+                p = -clamp
+        else:
+            p = 0
         gain = self.ff_gain
         if gain != 1000:
             speed *= gain
@@ -61,7 +67,11 @@ class PositionLoop:
             out *= num
             out = out // den if out >= 0 else -(-out // den)
         clamp = self.output_clamp
-        self.output = out = clamp if out > clamp else (-clamp if out < -clamp else out)
+        if out > clamp:
+            out = clamp
+        elif out < -clamp:
+            out = -clamp
+        self.output = out
         return out
 
     def idle(self, profile_position: int, feedback: int) -> None:

@@ -73,24 +73,25 @@ class Plant:
         latency, L2112-2120). A drive that is not running coasts toward rest. True when a marker was passed
         (then `update_marker_window` must follow)."""
         v = self.speed
-        if not running:
+        if running:
+            e, g = self._first
+            d = v - old
+            pos = self.position + old + d * g
+            v = old + d * e
+            q = self.quarters - 1
+            if q:
+                e, g = self._rest
+                d = v - new
+                pos += new * q + d * g
+                v = new + d * e
+        else:
             e, g = self._coast
-            self.position += v * g
-            self.speed = v * e
-            lo, hi = self._mark_window
-            return not lo <= self.position < hi
-        e, g = self._first
-        pos = self.position + old + (v - old) * g
-        v = old + (v - old) * e
-        q = self.quarters - 1
-        if q:
-            e, g = self._rest
-            pos += new * q + (v - new) * g
-            v = new + (v - new) * e
+            pos = self.position + v * g
+            v *= e
         self.position = pos
         self.speed = v
         lo, hi = self._mark_window
-        return not lo <= pos < hi
+        return pos < lo or pos >= hi
 
     def encoder_word(self) -> int:
         """The drive encoder's 48-bit word, quantised to its resolution."""

@@ -114,16 +114,16 @@ class ProfileGenerator:
         """Bypassed (disabled, CAM, locked digital lock, instant stop): the output is the input; the speed is
         the increment per sample, so leaving the bypass later is bumpless in speed (acceleration restarts
         from 0, **inferred**)."""
-        if not -0x80000000 <= position < 0x80000000:
+        if (position + 0x80000000) >> 32:       # outside int32
             position = wrap32(position)
         step = position - self.position
-        if not -0x80000000 <= step < 0x80000000:
+        if (step + 0x80000000) >> 32:
             step = wrap32(step)
         self.input_position = self.position = self.base = position
         self.prev_speed = self.speed
         self.speed = step / n
-        self.acceleration = self.jerk_out = self.offset = 0.0
         if self.mode != "bypass":
+            self.acceleration = self.jerk_out = self.offset = 0.0
             self.mode, self._planned = "bypass", None
 
     # --- stepping -------------------------------------------------------------------------------------------

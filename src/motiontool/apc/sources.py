@@ -59,11 +59,15 @@ class Source:
         self.events: list[tuple[int, str]] = []   # (time in ns, "freeze" | "marker") waiting for their sample
 
     # --- refresh ----------------------------------------------------------------------------------------------
-    def refresh(self, word: int, turns_bits: int) -> None:
-        """Read the source word and pass the change on to the input and the integrator."""
+    def refresh(self, word: int, turns_bits: int, first: bool) -> None:
+        """Read the source word and pass the change on to the input and the integrator; `first` (the first
+        read of a sample) keeps the previous values as the sample's start."""
+        if first:
+            self.sample_start_position = self.position
+            self.sample_start_integrated = self.integrated
         self.word = word
         w = ((word + self.marker_adjust) >> turns_bits) & 0xFFFFFFFF
-        position = self.position = w - 0x100000000 if w & 0x80000000 else w
+        position = self.position = (w ^ 0x80000000) - 0x80000000          # as a signed 32-bit number
         if self.input_disabled:
             new_input = wrap32(self.user_input)
         elif self.inverted:
@@ -71,11 +75,11 @@ class Source:
         else:
             new_input = position
         delta = new_input - self.input
-        if not -0x80000000 <= delta < 0x80000000:
+        if (delta + 0x80000000) >> 32:      # outside int32: the counter wrapped
             delta = wrap32(delta)
         self.input = new_input
         total = self.integrated + delta
-        self.integrated = total if -0x80000000 <= total < 0x80000000 else wrap32(total)
+        self.integrated = wrap32(total) if (total + 0x80000000) >> 32 else total
 
     def start_sample(self) -> None:
         self.sample_start_position = self.position
