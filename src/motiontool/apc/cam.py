@@ -67,8 +67,11 @@ class Cam:
         return self.mode
 
     def _inseg(self, seg: int, x: int) -> int:
+        code = self.mode
+        if code == -1:
+            code = self.interp[seg] if self.interp is not None else 0
         big_x = self.in_array[seg]
-        value = law_value(self.code(seg), x, big_x, self.out1[seg])
+        value = law_value(code, x, big_x, self.out1[seg])
         if self.out2 is not None:
             value += law_value(0, x, big_x, self.out2[seg])
         return value
@@ -122,10 +125,10 @@ class Cam:
         """Follow `master_delta` counts of the reference this sample; the slave increment after the ratio.
         Raises CamError on a delta-segment-limit breach (Stop plus the trip, L3524-3546)."""
         self.wrapped = 0
-        if not self.single_shot and master_delta > 0 and self.position + master_delta < self.in_array[self.segment]:
+        pos = self.position + master_delta
+        if master_delta > 0 and not self.single_shot and pos < self.in_array[self.segment]:
             # inside the present segment (the common case)
-            seg, pos = self.segment, self.position + master_delta
-            now = self._inseg(seg, pos)
+            now = self._inseg(self.segment, pos)
             out = now - self._done_here
             self.position, self._done_here = pos, now
             ratio = self.ratio

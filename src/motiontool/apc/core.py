@@ -31,7 +31,7 @@ from motiontool.apc.loop import OutputChannel, PositionLoop
 from motiontool.apc.plant import Plant, PlantConfig, SlotEncoder
 from motiontool.apc.profile import ProfileGenerator
 from motiontool.apc.sources import UNCONFIGURED, USER_PROGRAM, Source
-from motiontool.apc.units import POS_RATE_US, UserUnits, rpm_to_speed
+from motiontool.apc.units import POS_RATE_US, UserUnits, rpm_to_speed, speed_to_rpm_x10
 
 STOP, POSITION, SPEED, CAM, DIG_LOCK = range(5)
 PROFILED_STOP, INSTANT_STOP, LINEAR_STOP, SPEED_STOP = range(4)
@@ -153,6 +153,9 @@ class KernelCore:
 
     def _install_virtual_parameters(self) -> None:
         p = self.params
+        for key in ((1, 21), (3, 22)):
+            p.readers[key] = lambda k=key: self._channel_parameter(k)
+            p.writers[key] = lambda v, k=key: p.values.__setitem__(k, v)
         p.readers[(1, 11)] = lambda: self.reference_on
         p.writers[(1, 11)] = lambda v: setattr(self, "drive_enabled", bool(v))   # the run command (A45)
         p.readers[(3, 48)] = lambda: 1          # encoder initialised (L434-437): the simulated one is at once
@@ -245,14 +248,15 @@ class KernelCore:
             else:
                 fb.sample_start_position, fb.sample_start_integrated = fb.position, fb.integrated
             if pos0 is not None:
+                rsel = ref.selector
                 self.task = "pos0"
                 pos0()
                 # what POS0 wrote counts in this sample (user-program words, filtered inputs, L7219-7222)
-                if ref.selector == USER_PROGRAM:
+                if rsel == USER_PROGRAM:
                     ref.refresh(ref.user_word, tb, False)
                 elif ref.input_disabled:
                     ref.refresh(ref.word, tb, False)
-                if fb.selector == USER_PROGRAM:
+                if sel == USER_PROGRAM:
                     fb.refresh(fb.user_word, tb, False)
                 elif fb.input_disabled:
                     fb.refresh(fb.word, tb, False)
@@ -270,6 +274,13 @@ class KernelCore:
             self.pos1()
         self.task = None
         self._latch_output()
+
+    def _channel_parameter(self, key: tuple[int, int]) -> int:
+        """#1.21 / #3.22: what the output channel wrote there (rpm×10), computed when read."""
+        channel = self.channel
+        if channel.enabled and channel.mode == 2 and key == (1, 21):
+            return speed_to_rpm_x10(channel.sent)
+        return self.params.values.get(key, 0)
 
     def _markers_passed(self, before: float, t_prev: int) -> None:
         plant = self.plant
@@ -293,8 +304,7 @@ class KernelCore:
         speed = self.loop.output if self.enabled else 0
         values = self.params.values
         if channel.enabled and channel.mode == 2:          # the examples' mode: #1.21 and the speed shortcut
-            x = speed * 600000                             # rpm×10 to the nearest 0.1 rpm (decision A46)
-            values[(1, 21)] = (x + 0x20000000) >> 30 if x >= 0 else -((0x20000000 - x) >> 30)
+            channel.sent = speed                           # #1.21 shows it (read on demand, _channel_parameter)
         else:
             shortcut, target, value = channel.latch(speed)
             if target is not None:

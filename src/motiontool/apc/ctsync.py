@@ -39,9 +39,6 @@ class CTSyncLine:
         self.faults: dict[int, str] = {}      # sample number → "short" | "long" | "checksum" | "missing"
         self.samples = 0
         self._in_flight: tuple[int, int, int] | None = None
-        for d in self.drives:
-            for key in ((91, 17), (91, 18), (91, 19)):
-                d.params.values.setdefault(key, 0)
 
     def inject(self, sample: int, fault: str) -> None:
         """Spoil the message that arrives for `sample` (1-based count of line samples)."""
@@ -56,23 +53,27 @@ class CTSyncLine:
         """One sample on every node: deliver last sample's broadcast, run all nodes, collect the new one."""
         self.samples += 1
         message, fault = self._in_flight, self.faults.pop(self.samples, None)
-        for d in self.drives:
-            counters = d.params.values
-            if message is None or fault == "missing":
-                d.ctsync_status = 0
-                if message is not None or self.samples > 1 and self.masters():
-                    counters[(91, 19)] += 1
-            elif fault:
-                d.ctsync_status = FAULT_STATUS[fault]
-                counters[(91, 18)] += 1
-            else:
-                d.ctsync_in, d.ctsync_status = message, 1
-                counters[(91, 17)] += 1
+        if message is not None and fault is None:
+            for d in self.drives:
+                d.ctsync_in = message
+                d.ctsync_status = 1
+                d.ctsync_counts[0] += 1
+        else:
+            missing = fault == "missing" or message is None and self.samples > 1 and bool(self.masters())
+            for d in self.drives:
+                if message is None or fault == "missing":
+                    d.ctsync_status = 0
+                    d.ctsync_counts[2] += missing
+                else:
+                    d.ctsync_status = FAULT_STATUS[fault]
+                    d.ctsync_counts[1] += 1
+        sent = None
         for d in self.drives:
             d.ctsync_out = None
             d.tick()
-        sent = [d.ctsync_out for d in self.drives if d.ctsync_out is not None]
-        self._in_flight = sent[-1] if sent else None
+            if d.ctsync_out is not None:
+                sent = d.ctsync_out
+        self._in_flight = sent
 
     def run_ms(self, ms: float) -> None:
         for _ in range(round(ms * 1000 / self.drives[0].period_us)):

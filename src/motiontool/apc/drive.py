@@ -35,7 +35,10 @@ class ApcDrive(ControlCommands, ReferenceCommands, KernelCore):
         self.ctsync_out: tuple[int, int, int] | None = None
         self.ctsync_in: tuple[int, int, int] = (0, 0, 0)
         self.ctsync_status = 0            # nothing received yet: "zero or fewer bytes than expected" (L3276)
+        self.ctsync_counts = [0, 0, 0]    # valid, invalid, missing messages (91.17-91.19)
         super().__init__(plant, pos_rate=pos_rate)
+        for i, key in enumerate(((91, 17), (91, 18), (91, 19))):
+            self.params.readers[key] = lambda i=i: self.ctsync_counts[i]
         self._readers = self._make_readers()
 
     # --- running ---------------------------------------------------------------------------------------------

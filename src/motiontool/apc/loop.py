@@ -91,6 +91,7 @@ class OutputChannel:
         self.parameter = 0
         self.enabled = False
         self.user_value = 0
+        self.sent = 0               # the last speed written in mode 2 (#1.21 reads it as rpm×10)
 
     def setup(self, mode: int, menu: int, parameter: int) -> bool:
         if mode not in VALID_MODES:
