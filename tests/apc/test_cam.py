@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 
 from motiontool.apc.calculators import counts_per_second, ramp_counts, steady_counts
 from motiontool.apc.cam import Cam, CamError
-from motiontool.apc.camlaws import law_value
+from motiontool.apc.camlaws import LAW_NAMES, law_value
 
 from .helpers import VirtualMaster, enabled_drive
 
@@ -84,6 +84,11 @@ def test_end_of_segment_speed_ratios_per_law(code, start, end):
     assert first == pytest.approx(start, abs=0.005)
     assert last == pytest.approx(end, abs=0.005)
     assert law_value(code, big_x, big_x, y) == y and law_value(code, 0, big_x, y) == 0
+
+
+def test_law_names_are_the_interpolation_codes():
+    """L3557-3563 "0 = Linear 1 = Cosine 2 = Square1 3 = Square2 4 = Cosine1 5 = Cosine2"."""
+    assert LAW_NAMES == ("Linear", "Cosine", "Square1", "Square2", "Cosine1", "Cosine2")
 
 
 def test_cosine_peak_is_pi_y_over_2x():

@@ -1,6 +1,8 @@
 """Freeze and marker capture between samples, freeze-triggered CAM and digital lock, re-arm, marker reset
 (seed 004 §4.3.8, §4.7.9-4.7.10, §4.8.6, §5.2.2)."""
 
+import pytest
+
 from .helpers import VirtualMaster, enabled_drive
 
 
@@ -158,3 +160,13 @@ def test_feedback_encoder_marker_from_the_plant():
     d.run_ms(300)
     assert d.read(44) == 1
     assert abs(d.read(43) % 65536 - 16384) <= 40
+
+
+def test_events_must_come_after_the_last_sample():
+    d, _ = master_drive()
+    with pytest.raises(ValueError, match="last sample was at"):
+        d.schedule("reference", "freeze", d.time_ns / 1000)
+    with pytest.raises(ValueError, match="reference or feedback"):
+        d.schedule("master", "freeze", d.time_ns / 1000 + 10)
+    with pytest.raises(ValueError, match="freeze or marker"):
+        d.schedule("reference", "index", d.time_ns / 1000 + 10)

@@ -116,3 +116,18 @@ def test_program_host_slices_before_each_pos_sample_and_publishes():
     link.advance(2)
     assert order == [("slice", 0), ("slice", 1), ("slice", 2), ("slice", 3)]
     assert [e.text for e in events] == ["started"]
+
+
+def test_the_freeze_input_over_the_link():
+    """L629-643 DIGIN0 (T10) is the SM-Applications freeze input: set_input 0 freezes now, schedule_input later."""
+    drive = ApcDrive()
+    drive.APCEnableReferenceFreeze()
+    drive.APCEnableFeedbackFreeze()
+    drive.APCSetRunMode(1)
+    link = embedded_apc_link(drive)
+    link.advance(5)
+    link.set_input(0, 1)
+    link.advance(1)
+    assert link.read_parameter("APC_RFSRC_FRZFLG") == 1 and link.read_parameter(42) == 1
+    with pytest.raises(LinkError, match="DIGIN0"):
+        link.set_input(3, 1)

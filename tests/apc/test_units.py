@@ -35,6 +35,16 @@ def test_default_acceleration_is_1_25_rpm_per_250us():
     assert speed_to_rpm(22369) == pytest.approx(1.25, abs=1e-4)
 
 
+def test_pos_rate_codes():
+    """L655-673 #81.12: 1 = 0.25 ms, 2 = 0.5, 3 = 1, 4 = 2, 5 = 4, 6 = 8 ms; [13] reports 0..5 (L7711)."""
+    from motiontool.apc import ApcDrive
+    from motiontool.apc.units import pos_rate_code
+    assert [pos_rate_code(us) for us in (250, 500, 1000, 2000, 4000, 8000)] == [1, 2, 3, 4, 5, 6]
+    with pytest.raises(ValueError, match="250, 500"):
+        pos_rate_code(3000)
+    assert ApcDrive(pos_rate=5).read(13) == 4 and ApcDrive(pos_rate=5).period_us == 4000
+
+
 def test_jerk_from_jerk_time():
     """L740 "APCJerk%=MULDIV(APCAccel%, 250, JerkTimeMicroSec%)"."""
     assert jerk_from_time(22369, 250_000) == 22

@@ -61,11 +61,6 @@ class Cam:
         """APCCamInitialise*: register the arrays (they are read live, so edits act at once, L1528-1531)."""
         self.in_array, self.out1, self.out2, self.interp = in_array, out1, out2, interp
 
-    def code(self, seg: int) -> int:
-        if self.mode == -1:
-            return self.interp[seg] if self.interp is not None else 0
-        return self.mode
-
     def _inseg(self, seg: int, x: int) -> int:
         code = self.mode
         if code == -1:

@@ -38,14 +38,6 @@ PROFILED_STOP, INSTANT_STOP, LINEAR_STOP, SPEED_STOP = range(4)
 APC_VERSION = 10404        # [15]: the firmware generation the simulation follows (V01.04.04, user units)
 
 
-class ApcError(Exception):
-    """An APC runtime error (90.49 code); the kernel selects Stop and, with #81.38 = 1, trips Tr81."""
-
-    def __init__(self, code: int, text: str):
-        super().__init__(text)
-        self.code = code
-
-
 class Slots(dict):
     """The three option slots {1, 2, 3} → a position module's encoder or None; `fitted` lists the modules."""
 
@@ -195,14 +187,16 @@ class KernelCore:
             self._emit("trip", trip=trip, text=text, time_us=self.time_ns / 1000)
 
     def schedule(self, side: str, kind: str, time_us: float) -> None:
-        """A freeze or marker event on the reference or feedback side at `time_us` (between samples)."""
-        source = {"reference": self.ref, "feedback": self.fb}[side]
+        """A freeze or marker event on the reference or feedback side at `time_us`, after the last sample; it is
+        latched in the sample that follows it (decision A13)."""
+        if side not in ("reference", "feedback"):
+            raise ValueError(f"side {side!r}: reference or feedback")
         if kind not in ("freeze", "marker"):
             raise ValueError(f"event {kind!r}: freeze or marker")
         when = round(time_us * 1000)
-        if when <= self.time_ns - self.period_ns:
-            raise ValueError(f"{kind} at {time_us} µs is before the present sample ({self.time_ns / 1000} µs)")
-        source.events.append((when, kind))
+        if when <= self.time_ns:
+            raise ValueError(f"{kind} at {time_us} µs: the last sample was at {self.time_ns / 1000} µs")
+        (self.ref if side == "reference" else self.fb).events.append((when, kind))
 
     # --- the tick ----------------------------------------------------------------------------------------------
     def _source_word(self, source: Source, drive_word: int) -> int:
@@ -232,31 +226,17 @@ class KernelCore:
         pos0 = self.pos0
         if self.run_mode:
             ref, fb, tb = self.ref, self.fb, self.turns_bits
-            # a user-program source is written in POS0 (L3107-3110), so with a POS0 it is read after it only
-            sel = ref.selector
-            if sel == 0:
-                ref.refresh(plant.encoder_word(), tb, True)
-            elif sel != USER_PROGRAM or pos0 is None:
-                ref.refresh(self._source_word(ref, 0), tb, True)
-            else:
-                ref.sample_start_position, ref.sample_start_integrated = ref.position, ref.integrated
-            sel = fb.selector
-            if sel == 0:
-                fb.refresh(plant.encoder_word(), tb, True)
-            elif sel != USER_PROGRAM or pos0 is None:
-                fb.refresh(self._source_word(fb, 0), tb, True)
-            else:
-                fb.sample_start_position, fb.sample_start_integrated = fb.position, fb.integrated
+            self._first_read(ref, pos0, tb)
+            self._first_read(fb, pos0, tb)
             if pos0 is not None:
-                rsel = ref.selector
                 self.task = "pos0"
                 pos0()
                 # what POS0 wrote counts in this sample (user-program words, filtered inputs, L7219-7222)
-                if rsel == USER_PROGRAM:
+                if ref.selector == USER_PROGRAM:
                     ref.refresh(ref.user_word, tb, False)
                 elif ref.input_disabled:
                     ref.refresh(ref.word, tb, False)
-                if sel == USER_PROGRAM:
+                if fb.selector == USER_PROGRAM:
                     fb.refresh(fb.user_word, tb, False)
                 elif fb.input_disabled:
                     fb.refresh(fb.word, tb, False)
@@ -281,6 +261,17 @@ class KernelCore:
         if channel.enabled and channel.mode == 2 and key == (1, 21):
             return speed_to_rpm_x10(channel.sent)
         return self.params.values.get(key, 0)
+
+    def _first_read(self, source: Source, pos0, tb: int) -> None:
+        """The sample's first read of a source. A user-program source is written in POS0 (L3107-3110), so with a
+        POS0 it is read after it only."""
+        sel = source.selector
+        if sel == 0:
+            source.refresh(self.plant.encoder_word(), tb, True)
+        elif sel != USER_PROGRAM or pos0 is None:
+            source.refresh(self._source_word(source, 0), tb, True)
+        else:
+            source.sample_start_position, source.sample_start_integrated = source.position, source.integrated
 
     def _markers_passed(self, before: float, t_prev: int) -> None:
         plant = self.plant

@@ -188,13 +188,14 @@ class ApcService:
         reference and feedback counters now."""
         if int(number) != 0:
             raise ValueError(f"the simulated SM-Applications has the freeze input DIGIN0 only (got {number})")
-        if value:
-            self.op_schedule_input(0, 1, self.time_ms)
+        if value:      # now: just after the last sample
+            for side in ("reference", "feedback"):
+                self.drive.schedule(side, "freeze", self.drive.time_ns / 1000 + 0.001)
 
     def op_schedule_input(self, number, value, time_ms) -> None:
         if int(number) != 0 or not value:
             raise ValueError("schedule DIGIN0 (the freeze input) rising: number 0, value 1")
-        for side in ("reference", "feedback"):
+        for side in ("reference", "feedback"):      # service time and drive time run together
             self.drive.schedule(side, "freeze", float(time_ms) * 1000)
 
     def op_error_history(self) -> list[dict]:
