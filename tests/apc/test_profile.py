@@ -37,8 +37,9 @@ def check_limits(pg: ProfileGenerator, trace, n: int):
     prev_pos = None
     for pos, v, a, j in trace:
         assert abs(v) <= vmax + 1
-        limit = accel if v == 0 or (a > 0) == (v > 0) else decel
-        assert abs(a) <= max(limit, accel if abs(v) < abs(a) * n else limit) + 1
+        assert abs(a) <= max(accel, decel) + 1
+        if abs(v) > abs(a) * n:          # clearly on one side of zero speed: accel away from it, decel toward it
+            assert abs(a) <= (accel if (a > 0) == (v > 0) else decel) + 1
         if jerk:
             assert abs(j) <= jerk + 1
         if prev_pos is not None:    # the sampled positions move no faster than the maximum speed
