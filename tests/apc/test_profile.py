@@ -199,3 +199,20 @@ def test_speed_reference_runs_at_its_exact_speed():
     start = d.read(117)
     d.run_ms(60_000)
     assert abs(d.read(117) - start - speed * 4 * 60_000 / 65536) < 1       # 65536 counts in 0.6 s: no drift
+
+
+@pytest.mark.parametrize("code", [1, 2, 3, 4, 5, 6])
+def test_every_pos_rate_runs_the_same_motion(code):
+    """L655-673 "The motion/position task can be run at … 250μs, 500μs, 1ms, 2ms, 4ms & 8ms": the units are per
+    250 µs whatever the rate, so a jog covers the same distance in the same time at every rate."""
+    from motiontool.apc import ApcDrive
+    d = ApcDrive(pos_rate=code)
+    d.APCSetRunMode(2)
+    d.run_ms(8)
+    d.APCSetSpeedSetPoint(rpm_to_speed(600))
+    d.APCSelectReference(2)
+    d.run_ms(200)                            # up to speed (600 rpm at 5000 rpm/s takes 120 ms)
+    start, t0 = d.read(117), d.time_ns
+    d.run_ms(1000)
+    assert d.time_ns - t0 == 1_000_000_000
+    assert abs(d.read(117) - start - rpm_to_speed(600) * 4000 / 65536) <= 1
