@@ -131,3 +131,19 @@ def test_the_freeze_input_over_the_link():
     assert link.read_parameter("APC_RFSRC_FRZFLG") == 1 and link.read_parameter(42) == 1
     with pytest.raises(LinkError, match="DIGIN0"):
         link.set_input(3, 1)
+
+
+def test_threaded_link_paces_the_apc_in_real_time():
+    """The IDE's link runs the controller on its own thread at real time × factor (decision K10)."""
+    import time
+
+    drive = ApcDrive()
+    link = embedded_apc_link(drive, realtime_factor=20.0)
+    try:
+        deadline = time.monotonic() + 10
+        while link.status().time_ms < 200 and time.monotonic() < deadline:
+            time.sleep(0.01)
+        assert link.status().time_ms >= 200 and drive.samples >= 200
+        assert link.call("identify")["kind"] == "APC"
+    finally:
+        link.close()
