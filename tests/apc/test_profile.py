@@ -216,3 +216,25 @@ def test_every_pos_rate_runs_the_same_motion(code):
     d.run_ms(1000)
     assert d.time_ns - t0 == 1_000_000_000
     assert abs(d.read(117) - start - rpm_to_speed(600) * 4000 / 65536) <= 1
+
+
+def test_reference_switching_is_bumpless():
+    """L787-801 "bump-less" transfer: "the profile generator is used to ramp to the new position or speed reference,
+    so that there are no sudden jumps in Feedback axis position or speed": from a running digital lock to Stop
+    and then to Position, the speed changes by at most the ramp per sample."""
+    from .helpers import VirtualMaster
+    d = enabled_drive()
+    VirtualMaster(d, 600)
+    d.APCSelectReference(4)
+    d.run_ms(300)
+    assert d.read(61) == 1
+    ramp = 22369 * 4 + 1                      # default accel/decel per 1 ms sample, APC units
+    last = d.read(118)
+    for reference, ms in ((0, 400), (1, 600)):
+        d.APCSelectReference(reference)
+        for _ in range(ms):
+            d.tick()
+            now = d.read(118)
+            assert abs(now - last) <= ramp
+            last = now
+    assert d.read(117) == d.read(92) == 0
