@@ -1,4 +1,5 @@
-"""The simulated Unidrive SP behind the APC: speed loop, motor and load, encoders (docs/apc.md "Plant").
+"""The simulated Unidrive SP behind the APC: speed loop, motor and load, encoders (docs/apc.md "Behaviour in
+brief").
 
 The APC manual describes none of this (**inferred** model, docs/decisions.md A44): the drive's speed loop
 follows its speed reference as a first-order lag, the motor position integrates the speed, and the drive
@@ -11,7 +12,7 @@ the word by exactly the speed.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 WORD48 = (1 << 48) - 1
 REV = 1 << 32
@@ -24,14 +25,6 @@ class PlantConfig:
     encoder_cpr: int = 65536        # counts per revolution of the drive encoder (4096 ppr quadrature = 16384)
     start_revolutions: float = 0.0  # motor position at power-up
     marker_angle: float | None = 0.0    # the encoder's marker (index) pulse at this fraction of a turn, or None
-
-    @classmethod
-    def from_mapping(cls, values: dict) -> PlantConfig:
-        known = {f.name for f in fields(cls)}
-        unknown = set(values) - known
-        if unknown:
-            raise ValueError(f"unknown plant setting(s): {', '.join(sorted(unknown))}")
-        return cls(**values)
 
 
 class Plant:
