@@ -13,6 +13,7 @@ from motiontool.aposs.ast import DOUBLE, LONG
 from motiontool.aposs.constexpr import NotConstant, fold, fold_int
 from motiontool.aposs.diagnostics import CompileError, Location
 from motiontool.aposs.image import BINOP_OF, MATH_FUNCTIONS, PSEUDO_ARRAYS, SELECTOR_CODES, Op
+from motiontool.aposs.simulated import unserved_note
 
 
 class ExpressionCode:
@@ -209,6 +210,8 @@ class ExpressionCode:
             self.to_long(self.expr(e.axis))
         for spec, arg in zip(_expanded_specs(cmd, len(e.args)), e.args, strict=True):
             self.argument(spec, arg)
+        if (note := unserved_note(name)) is not None:
+            self.sink.warning(note, e.loc)
         self.emit(Op.CMD, self.call_entry(name, len(e.args), e.axis is not None, cmd.returns))
         return cmd.returns
 

@@ -493,5 +493,6 @@ def sysvar(ctl, vm, args):
     return read_sysvar(ctl, args[0]) or 0
 
 
-# the synchronisation, marker and CAM commands live in their own module; importing it registers them
-from motiontool.kernel import sync_commands  # noqa: E402, F401
+# the synchronisation, marker and CAM commands, the CAN commands and those without a simulated device live in
+# their own modules; importing them registers them
+from motiontool.kernel import can_commands, sync_commands, unserved  # noqa: E402, F401

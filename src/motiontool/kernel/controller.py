@@ -12,9 +12,11 @@ from dataclasses import dataclass, field
 
 from motiontool.aposs.image import CommandCall, ProgramImage
 from motiontool.kernel import io as iomod
+from motiontool.kernel import objdict
 from motiontool.kernel.arrays import ArrayMemory
 from motiontool.kernel.axis import Axis, Gains
 from motiontool.kernel.cam import curve_cycle_length, master_curve_position
+from motiontool.kernel.canport import CanPort
 from motiontool.kernel.errors import AXIS_ERRORS, ControllerError, error_text
 from motiontool.kernel.interrupts import Interrupts
 from motiontool.kernel.markers import Markers
@@ -103,11 +105,11 @@ class Controller:
         self.breakpoints: set[int] = set()   # source lines (of the main file) where a debug build stops
         self.single_step = False
         self.pcd: dict[int, int] = {}
-        self.pdo: dict[int, int] = {}
         self.apply_parameters()
         self.params.on_change = self._parameter_changed
         self._install_readouts()
         self.markers = Markers(self)  # master/slave markers, MIPOS/IPOS, SYNCM (kernel/markers.py)
+        self.can = CanPort(self)      # its CAN controller: mailboxes, PDOs, SDO (kernel/canport.py)
         from motiontool.kernel import commands
         self._commands = commands.COMMANDS
 
@@ -215,6 +217,7 @@ class Controller:
         self.motion = MotionSettings()
         self.program_data = ProgramData()
         self.recorder.reset_settings()
+        self.can.program_started()
         self.vm = None
         self.program_state = "running"
         try:
@@ -318,6 +321,7 @@ class Controller:
             self.raise_error(exc)
         if self.recorder.active is not None:
             self.recorder.sample(self._read_sysvar_for_recording)
+        self.can.tick(time_ms)
         if self.program_state == "running":  # a slice of the program (inline: every tick)
             vm = self.vm
             if self.interrupts.sources or self.error:
@@ -523,13 +527,18 @@ class Controller:
         if which == 0:
             value = read_sysvar(self, index)
             return 0 if value is None else value
-        return (self.pcd if which == 1 else self.pdo).get(index, 0)
+        return self.pcd.get(index, 0) if which == 1 else self.can.pdo.read_element(index)
 
     def write_pseudo(self, which: int, index: int, value: int) -> None:
         if which == 0 and index == 4105:  # simulated master position (DG 8370)
             self.master.write_position(value)
             return
-        target = self.sysvar_memory if which == 0 else (self.pcd if which == 1 else self.pdo)
+        if which == 2:
+            self.can.pdo.write_element(index, value)
+            return
+        if which == 0 and objdict.write_sysvar(self, index, value):  # an object of the dictionary (CR 2039)
+            return
+        target = self.sysvar_memory if which == 0 else self.pcd
         target[index] = value
 
     def _homing_finished(self) -> None:

@@ -34,6 +34,8 @@ ERRORS: dict[int, tuple[str, str]] = {
     183: ("Invalid argument", "a command got an argument outside its range"),
     184: ("Too many ontime", "more than 12 ON TIME / ON PERIOD"),
     187: ("Out of memory", "not enough memory for the program's variables"),
+    188: ("CAN guarding error", "a guarded CAN node did not answer within 100 ms"),
+    189: ("CAN send-receive error", "an SDO, CANIN/CANOUT or CAN I/O transfer failed"),
     191: ("Illegal cam array", "SETCURVE got an array that is not a valid curve"),
     192: ("Encoder error", "encoder monitoring detected a fault"),
     193: ("Stack overflow", "too many local variables or nested function calls"),

@@ -151,6 +151,12 @@ class Interrupts:
             if s.kind == "PARAM" and s.number == number:
                 s.pending = True
 
+    def fire(self, kind: str) -> None:
+        """An event source fired outside `detect` (CANINPUT: a global CAN telegram, CANMSG: a buffered message)."""
+        for s in self.sources:
+            if s.kind == kind:
+                s.pending = True
+
     def drop_spent(self) -> None:
         self.sources = [s for s in self.sources if not (s.spent and not s.pending)]
 

@@ -28,6 +28,8 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Mapping
 
+from motiontool.kernel.canbus import CanBus
+from motiontool.kernel.canport import CANNR
 from motiontool.kernel.controller import Controller
 from motiontool.kernel.master import Master, MasterConfig
 from motiontool.kernel.plant import PlantConfig
@@ -85,6 +87,11 @@ class Simulation:
             for n, c in self.controllers.items():
                 if n != master_node:
                     c.master.feed, c.master.feed_virtual_only = source, True
+        # one CAN bus for all (kernel/canbus.py); every controller's CAN node id (CANNR) is its node id (K101)
+        self.can_bus = CanBus()
+        for n, c in self.controllers.items():
+            c.params.values[CANNR] = c.params.saved[CANNR] = n
+            c.can.attach(self.can_bus)
         self.order = ([master_node] if master_node is not None else []) + [n for n in ids if n != master_node]
         self._tickers: dict[int, Callable[[], None]] = {n: self.controllers[n].tick for n in self.order}
         self._sequence = [self._tickers[n] for n in self.order]
@@ -119,6 +126,7 @@ class Simulation:
         self.time_ms += 1
         if self.encoder is not None:
             self.encoder.tick(self.time_ms)
+        self.can_bus.deliver()
         for tick in self._sequence:
             tick()
 

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 AXIS_BASE = 4096
+GUARD_ERROR_ID = 67   # SYSVAR 67 = 0x01220244: the node a CANINI guarding failed on (CR 471)
 
 # n → (name shown by the oscilloscope as "Axis: Name [Index]", unit, reader(controller) in qc or raw units)
 AXIS_PROCESS_DATA = {
@@ -57,6 +58,14 @@ def read_sysvar(controller, index: int) -> int | None:
         return controller.io.output_word() & 0xFF
     if 0x01220100 < index <= 0x01220164:  # 0x2201: user parameters 19-00 … 19-99
         return controller.params.values.get(1900 + (index - 0x01220101), 0)
+    if index == GUARD_ERROR_ID:
+        return controller.can.guard_error_id
+    if index >> 24 == 1:  # any other object of the dictionary (kernel/objdict.py)
+        from motiontool.kernel.objdict import read_sysvar as read_object
+
+        value = read_object(controller, index)
+        if value is not None:
+            return value
     return controller.sysvar_memory.get(index)
 
 

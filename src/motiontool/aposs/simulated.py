@@ -1,0 +1,24 @@
+"""Documented commands the simulated controller serves only with the manual's own failure result, because the
+device they talk to does not exist in the simulation (issue 15: never error 110 for a documented command).
+
+`check`/`compile` warn where a program uses one (codegen_expr.py); the kernel (kernel/unserved.py) answers each as
+the manual says a controller without that device answers.
+"""
+
+from __future__ import annotations
+
+_NO_ENCODER = ("there is no Hiperface encoder on the simulated RS485 line: {write} returns 0 (sent), {read} 0 "
+               "while it waits and -1 (timeout) 300 ms after it (CR 1239-1243)")
+
+UNSERVED: dict[str, str] = {
+    "ENCTGWRITE": _NO_ENCODER.format(write="ENCTGWRITE", read="ENCTGREAD"),
+    "ENCTGREAD": _NO_ENCODER.format(write="ENCTGWRITE", read="ENCTGREAD"),
+    "MENCTGWRITE": _NO_ENCODER.format(write="MENCTGWRITE", read="MENCTGREAD"),
+    "MENCTGREAD": _NO_ENCODER.format(write="MENCTGWRITE", read="MENCTGREAD"),
+}
+
+
+def unserved_note(name: str) -> str | None:
+    """The warning for a command the simulator cannot serve, or None."""
+    reason = UNSERVED.get(name)
+    return None if reason is None else f"{name} on the simulated controller: {reason}"
