@@ -11,7 +11,7 @@ from motiontool.aposs.simulated import UNSERVED
 from motiontool.kernel.commands import COMMANDS
 from tests.kernel.can_helpers import bus, prints
 
-MANUAL = Path(__file__).parents[1] / "aposs" / "examples"
+MANUAL = Path(__file__).parents[1] / "aposs" / "manual"
 
 
 def test_every_command_of_the_can_group_and_the_pdo_links_is_simulated():

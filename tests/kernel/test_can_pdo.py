@@ -14,7 +14,7 @@ from motiontool.kernel import objdict
 from motiontool.kernel.canbus import CanFrame
 from tests.kernel.can_helpers import bus, errors, prints, tap
 
-MANUAL = Path(__file__).parents[1] / "aposs" / "examples"
+MANUAL = Path(__file__).parents[1] / "aposs" / "manual"
 IDLE = "WAITI 12 ON\n"               # the program stays (input 12 is never set)
 LISTEN_TO_NODE_1 = "SYSVAR[0x01140001] = 0x181 // RxPDO 1 takes node 1's TxPDO 1 (0x1400 sub 1)\n"
 

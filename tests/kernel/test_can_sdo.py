@@ -8,7 +8,7 @@ from pathlib import Path
 from motiontool.kernel import cansdo
 from tests.kernel.can_helpers import bus, errors, prints
 
-MANUAL = Path(__file__).parents[1] / "aposs" / "examples"
+MANUAL = Path(__file__).parents[1] / "aposs" / "manual"
 
 
 def test_sdowrite_sets_another_controllers_maximum_velocity_as_the_manual_says():
