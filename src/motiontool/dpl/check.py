@@ -267,6 +267,9 @@ class Checker:
                     self.sink.error(f"{fn.name}: {fn.args[n]} is the name of a DIM or CONST array", arg.loc)
             else:
                 self._expr(arg)
+        if not fn.simulated:
+            self.sink.warning(f"{fn.name} is not simulated (the SM-Applications manual documents it, not the APC "
+                              "manual); the program stops when it gets here", call.loc)
         if fn.tasks == "pos" and self.task not in POS_TASKS:
             self.sink.warning(f"{fn.name} belongs in a POS task (Pos0/Pos1), not {self.task} (seed 004 "
                               f"{fn.src.split(',')[0]})", call.loc)

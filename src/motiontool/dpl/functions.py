@@ -25,6 +25,7 @@ class Function:
     tasks: str                 # any | pos
     help: str
     src: str
+    simulated: bool = True     # False: documented outside the APC manual; the simulated module cannot run it
 
     @property
     def key(self) -> str:
@@ -55,7 +56,7 @@ def function_table() -> dict[str, Function]:
         where = f"{path}: function {n} ({entry.get('name', '?')})"
         try:
             fn = Function(entry["name"], entry["group"], tuple(entry["args"]), tuple(entry["returns"]),
-                          entry["tasks"], entry["help"], entry["src"])
+                          entry["tasks"], entry["help"], entry["src"], entry.get("simulated", True))
         except KeyError as exc:
             raise FunctionTableError(f"{where}: missing field {exc}") from None
         if not _NAME.fullmatch(fn.name) or fn.group not in GROUPS or fn.tasks not in TASKS:
