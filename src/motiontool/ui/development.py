@@ -11,6 +11,7 @@ from PySide6.QtWidgets import QFileDialog, QMessageBox
 
 from motiontool.aposs.driver import CompileResult, compile_source
 from motiontool.comms.protocol import LinkError
+from motiontool.dpl.driver import CheckResult, check_source
 from motiontool.fileio import atomic_write_bytes
 
 DEFAULT_CONTROLLER = ("embedded", 1)
@@ -18,7 +19,7 @@ DEFAULT_CONTROLLER = ("embedded", 1)
 
 @dataclass
 class CheckOutcome:
-    result: CompileResult
+    result: CompileResult | CheckResult    # CheckResult for a DPL program (the APC's language)
     first_error: tuple[int, int] | None
 
 
@@ -55,7 +56,10 @@ class Development:
             return None
         path = editor.property("path") or None
         name = Path(path).name if path else (editor.property("sample") or "Untitled.m")
-        result = compile_source(editor.toPlainText(), path or name, debug=debug, name=Path(name).stem)
+        if editor.language == "dpl":
+            result = check_source(editor.toPlainText(), path or name)
+        else:
+            result = compile_source(editor.toPlainText(), path or name, debug=debug, name=Path(name).stem)
         self.w.show_diagnostics(editor, result)
         first = next(((d.loc.line, d.loc.col) for d in result.errors), None)
         return CheckOutcome(result, first)
@@ -86,6 +90,9 @@ class Development:
             if outcome is not None:
                 for d in outcome.result.errors:
                     self.w.messages.ide(d.format())
+            return False
+        if isinstance(outcome.result, CheckResult):  # the simulated APC takes DPL source (docs/dpl.md)
+            self.w.messages.ide("A DPL program is downloaded as it is (Execute); it has no program image file")
             return False
         if target is None:
             editor = self.w.current_editor()

@@ -21,6 +21,7 @@ from PySide6.QtWidgets import (
 
 from motiontool import __version__
 from motiontool.aposs.driver import CompileResult, compile_source
+from motiontool.dpl.driver import check_source, is_dpl
 from motiontool.resources import resources_path
 from motiontool.ui.bridge import LinkBridge
 from motiontool.ui.development import Development
@@ -140,7 +141,8 @@ class MainWindow(QMainWindow):
         return editor
 
     def open_dialog(self) -> None:
-        chosen, _ = QFileDialog.getOpenFileName(self, "Open", "", "APOSS programs (*.m);;All files (*)")
+        chosen, _ = QFileDialog.getOpenFileName(self, "Open", "", "APOSS programs (*.m);;DPL programs (*.dpl);;"
+                                                                  "All files (*)")
         if chosen:
             self.open_file(Path(chosen))
 
@@ -182,6 +184,7 @@ class MainWindow(QMainWindow):
         editor.setPlainText(text)
         editor.mark_saved()
         editor.setProperty("path", str(path) if path else "")
+        editor.set_language("dpl" if is_dpl(path or title) else "aposs")
         editor.cursorLineColChanged.connect(lambda line, col: self.cursor_label.setText(f"{line}:{col}"))
         editor.textChanged.connect(self._live.start)
         editor.document().modificationChanged.connect(lambda _m, *, e=editor: self._update_tab_title(e))
@@ -209,12 +212,14 @@ class MainWindow(QMainWindow):
             return False
         target = path or (Path(editor.property("path")) if editor.property("path") else None)
         if target is None:
-            chosen, _ = QFileDialog.getSaveFileName(self, "Save as", "program.m", "APOSS programs (*.m)")
+            chosen, _ = QFileDialog.getSaveFileName(self, "Save as", "program.m",
+                                                    "APOSS programs (*.m);;DPL programs (*.dpl)")
             if not chosen:
                 return False
             target = Path(chosen)
         atomic_write_text(target, editor.toPlainText())
         editor.setProperty("path", str(target.resolve()))
+        editor.set_language("dpl" if is_dpl(target) else "aposs")
         editor.mark_saved()
         editor.save_bookmarks(self.bookmark_store, path=target.resolve())
         self.recovery.discard(editor)
@@ -227,7 +232,7 @@ class MainWindow(QMainWindow):
         if editor is None:
             return False
         chosen, _ = QFileDialog.getSaveFileName(self, "Save as", editor.property("path") or "program.m",
-                                                "APOSS programs (*.m)")
+                                                "APOSS programs (*.m);;DPL programs (*.dpl)")
         return bool(chosen) and self.save(editor=editor, path=Path(chosen))
 
     def close_tab(self, index: int) -> bool:
@@ -282,7 +287,8 @@ class MainWindow(QMainWindow):
         if editor is None:
             return
         path = editor.property("path") or (editor.property("sample") or "Untitled.m")
-        result = compile_source(editor.toPlainText(), path)
+        check = check_source if editor.language == "dpl" else compile_source
+        result = check(editor.toPlainText(), path)
         self.show_diagnostics(editor, result)
         self._fill_outline(editor)
 

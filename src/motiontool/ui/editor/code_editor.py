@@ -35,7 +35,7 @@ from PySide6.QtGui import (
 )
 from PySide6.QtWidgets import QCompleter, QMenu, QPlainTextEdit, QTextEdit, QToolTip, QWidget
 
-from motiontool.ui.editor import lang, outline
+from motiontool.ui.editor import dpl_lang, lang, outline
 from motiontool.ui.editor.bookmark_marks import BookmarkMixin
 from motiontool.ui.editor.completion import CompletionModel, HintDelegate
 from motiontool.ui.editor.debug_marks import DebugMarksMixin
@@ -108,6 +108,7 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
         self.setLineWrapMode(QPlainTextEdit.LineWrapMode.NoWrap)
         self.setMouseTracking(True)
         self.highlighter = AposHighlighter(self.document(), self.settings.colors)
+        self.lang = lang  # the words the editor knows: APOSS (lang) or DPL (dpl_lang), see set_language
         self.gutter = LineNumberArea(self)
         self._keymap = {QKeySequence(k).toString(QKeySequence.SequenceFormat.PortableText): v
                         for k, v in KEYMAP.items()}
@@ -296,7 +297,7 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
                     and d.cursor.block() == block]
         if messages:
             return "\n".join(messages)
-        return None if self.in_comment_or_string(block, index) else lang.hover_text(text, index)
+        return None if self.in_comment_or_string(block, index) else self.lang.hover_text(text, index)
 
     def viewportEvent(self, event: QEvent) -> bool:  # noqa: N802 (Qt override)
         if event.type() == QEvent.Type.ToolTip and isinstance(event, QHelpEvent):
@@ -308,6 +309,24 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
                 event.ignore()
             return True
         return super().viewportEvent(event)
+
+    # --- language --------------------------------------------------------------------------------------
+    @property
+    def language(self) -> str:
+        return "dpl" if self.lang is dpl_lang else "aposs"
+
+    def set_language(self, language: str) -> None:
+        """"dpl" for the APC's DPL (.dpl files), "aposs" otherwise: colours, hover help and completion follow."""
+        if language == self.language:
+            return
+        from motiontool.ui.editor.dpl_highlighter import DplHighlighter
+
+        self.highlighter.setDocument(None)
+        kind = DplHighlighter if language == "dpl" else AposHighlighter
+        self.highlighter = kind(self.document(), self.settings.colors)
+        self.highlighter.rehighlight()  # now, not on Qt's next event-loop pass: the text is already there
+        self.lang = dpl_lang if language == "dpl" else lang
+        self._symbols_revision = -1
 
     # --- completion ------------------------------------------------------------------------------------
     @property
@@ -335,7 +354,7 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
         if revision == self._symbols_revision or self._completer.popup().isVisible():
             return
         self._symbols_revision = revision
-        items = lang.completion_items(self.toPlainText())
+        items = self.lang.completion_items(self.toPlainText())
         if self._completion_model.set_items(items):
             fm = self._completer.popup().fontMetrics()
             longest = sorted(items, key=lambda i: -len(i.name) - len(i.hint))[:40]
