@@ -115,7 +115,7 @@ def build_parser() -> argparse.ArgumentParser:
                                    "--master-node is the master input of all the others; each output line is "
                                    "prefixed with its node id ('2: text'), --trace columns are 'ID:SIGNAL', "
                                    "--record writes OUT-nodeID.csv; the time ends when every program has stopped.")
-    p.add_argument("file", type=Path, metavar="FILE.m", nargs="?")
+    p.add_argument("file", type=Path, metavar="FILE.m|FILE.dpl", nargs="?")
     p.add_argument("--node", action="append", default=[], metavar="ID:PROGRAM.m",
                    help="also run PROGRAM.m on controller ID (1..32) of the same simulated project; repeatable")
     p.add_argument("--master-node", type=int, metavar="ID",
@@ -123,14 +123,17 @@ def build_parser() -> argparse.ArgumentParser:
                         "others (default: the lowest node id)")
     p.add_argument("--seconds", type=float, default=60.0, help="virtual time to run at most (default 60)")
     p.add_argument("--set", action="append", default=[], metavar="[ID:]NAME=VALUE",
-                   help="set a parameter before the start, e.g. KPROP=50 or 32-60=50; with ID: only on that node")
+                   help="set a parameter before the start, e.g. KPROP=50 or 32-60=50; with ID: only on that node; "
+                        "FILE.dpl: a drive parameter MM.PP=VALUE[@MS], at MS ms (1.11=0@2000 stops the drive)")
     p.add_argument("--input", action="append", default=[], metavar="[ID:]N=V@T",
                    help="set digital input N to V at T ms (default 0); with ID: only on that node")
     p.add_argument("--include", "-I", action="append", type=Path, default=[], metavar="DIR")
     p.add_argument("--config", type=Path, metavar="CONF.zbc",
                    help="load parameters and arrays first (with --node: into every node)")
     p.add_argument("--trace", type=Path, metavar="OUT.csv", help="write a trace of --signals")
-    p.add_argument("--signals", default="APOS,CPOS,TRACKERR", help="comma-separated signal names")
+    p.add_argument("--signals", default="APOS,CPOS,TRACKERR",
+                   help="comma-separated signal names (FILE.dpl: read parameters such as APC_FB_POS or 48, drive "
+                        "parameters such as 18.12; default APC_FB_POS,APC_TOT_POS_REF,APC_POS_ERROR)")
     p.add_argument("--interval", type=int, default=1, metavar="MS", help="trace interval (default 1 ms)")
     p.add_argument("--record", type=Path, metavar="OUT.csv", help="write every TESTSETP recording as CSV")
     p.add_argument("--realtime", action="store_true", help="pace virtual time at real time")

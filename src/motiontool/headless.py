@@ -17,6 +17,7 @@ from motiontool.cameditor.transfer import download_config
 from motiontool.cameditor.zbc import ConfigError, read_config
 from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.protocol import LinkError, LinkEvent
+from motiontool.dpl.driver import check_source, is_dpl
 
 EXIT_OK, EXIT_COMPILE, EXIT_CONTROLLER = 0, 1, 2
 _INPUT = re.compile(r"^(\d+)=(-?\d+)(?:@(\d+))?$")
@@ -120,9 +121,12 @@ def prepare_link(link, config, settings: list[str], inputs: list[str], options, 
     return True
 
 
-def run_program(path: Path | None, options: RunOptions, out: TextIO = sys.stdout, err: TextIO = sys.stderr) -> int:
+def run_program(path: Path | None, options: RunOptions, out: TextIO | None = None, err: TextIO | None = None) -> int:
+    out, err = out or sys.stdout, err or sys.stderr  # the streams of the moment (a test may have replaced them)
     if options.nodes:  # a multi-axis project: several controllers on one master signal
         return run_nodes(path, options, out, err)
+    if is_dpl(path):  # a DPL program runs on the simulated APC
+        return run_dpl(path, options, err)
     image = compile_program(path, options, err)
     loaded, config = load_config(options, err)
     if image is None or not loaded:
@@ -214,6 +218,92 @@ def run_until_stopped(links: list, options: RunOptions, time_base: int, output: 
             link.flush_events()
         if output.closed or all(link.status().program_state != "running" for link in links):
             break
+
+
+# --- DPL programs on the simulated APC (docs/dpl.md) -----------------------------------------------------------------
+MCO_SIGNALS = ["APOS", "CPOS", "TRACKERR"]
+DPL_SIGNALS = ["APC_FB_POS", "APC_TOT_POS_REF", "APC_POS_ERROR"]
+_DPL_SET = re.compile(r"^#?(\d{1,2})\.(\d{1,2})=(-?(?:0[xX][0-9A-Fa-f]+|\d+))(?:@(\d+))?$")
+
+
+def run_dpl(path: Path, options: RunOptions, err: TextIO) -> int:
+    """`motiontool run FILE.dpl`: check the program, download it to the embedded APC and run it for --seconds.
+    `--set MM.PP=VALUE[@MS]` writes a drive parameter before the start or at MS ms (#1.11 = 0/1 is the drive's
+    run command); the trace columns are read parameters (alias or number) or drive parameters (18.12). A DPL
+    program prints nothing: stderr gets the diagnostics and run-time errors; exit 1 on a check error, 2 on a
+    run-time error."""
+    from motiontool.comms.dpl_program import dpl_link
+    from motiontool.dpl.image import DplImage
+
+    checked = check_source(path=path)
+    for d in checked.diagnostics:
+        print(d.format(), file=err)
+    if not checked.ok:
+        return EXIT_COMPILE
+    if options.link not in (None, "sim", "apcsim") or options.config or options.inputs or options.record:
+        print("motiontool run: a DPL program runs on the embedded APC simulator only (no --link, --config, "
+              "--input or --record)", file=err)
+        return EXIT_COMPILE
+    writes = []
+    for setting in options.settings:
+        m = _DPL_SET.match(setting.replace(" ", ""))
+        if not m:
+            print(f"motiontool run: --set needs MM.PP=VALUE or MM.PP=VALUE@MS for a DPL program, got '{setting}'",
+                  file=err)
+            return EXIT_COMPILE
+        writes.append((int(m.group(4) or 0), f"{int(m.group(1))}.{int(m.group(2)):02d}", int(m.group(3), 0)))
+    writes.sort(key=lambda w: w[0])
+    signals = DPL_SIGNALS if options.signals == MCO_SIGNALS else options.signals
+    rows: list[list] = []
+    failed = []
+
+    def on_event(event: LinkEvent) -> None:
+        if event.kind == "error":
+            print(event.text, file=err)
+        elif event.kind == "program" and event.text == "program error":
+            failed.append(event)
+        elif event.kind == "samples":
+            rows.extend([t, *values] for t, values in zip(event.data["time_ms"], event.data["values"], strict=True))
+
+    link = dpl_link(realtime_factor=None)
+    link.subscribe(on_event)
+    try:
+        while writes and writes[0][0] == 0:
+            _, key, value = writes.pop(0)
+            link.write_parameter(key, value)
+        if options.trace:
+            link.call("stream", signals=signals, interval_ms=options.trace_interval_ms)
+        link.download(DplImage(str(path), checked.source).to_bytes(), name=path.name)  # errors name the path
+        link.start()
+        _advance_with_writes(link, writes, int(options.seconds * 1000), options.realtime, failed)
+        if options.trace:
+            link.call("stream", signals=[], interval_ms=1)
+            link.flush_events()
+            _write_csv(options.trace, ["time_ms", *signals], rows)
+    except LinkError as exc:
+        print(f"motiontool run: {exc}", file=err)
+        return EXIT_CONTROLLER
+    finally:
+        link.close()
+    return EXIT_CONTROLLER if failed else EXIT_OK
+
+
+def _advance_with_writes(link, writes: list, total: int, realtime: bool, failed: list) -> None:
+    """Virtual time in steps of at most 50 ms, stopping at every timed parameter write; ends early after a
+    run-time error."""
+    import time
+
+    elapsed, started = 0, time.monotonic()
+    while elapsed < total and not failed:
+        step = min(50, total - elapsed, *(t - elapsed for t, _, _ in writes[:1]))
+        link.advance(step)
+        elapsed += step
+        while writes and writes[0][0] <= elapsed:
+            _, key, value = writes.pop(0)
+            link.write_parameter(key, value)
+        link.flush_events()
+        if realtime:
+            time.sleep(max(0.0, elapsed / 1000 - (time.monotonic() - started)))
 
 
 def _write_csv(path: Path, header: list[str], rows: list[list]) -> None:

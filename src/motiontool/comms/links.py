@@ -152,7 +152,7 @@ def _load_builtin_schemes() -> None:
 
 
 # modules that register a link scheme on import (comms/canopen is optional: skipped while it does not exist)
-BUILTIN_MODULES = ("motiontool.comms.fc.link", "motiontool.comms.canopen.link")
+BUILTIN_MODULES = ("motiontool.comms.fc.link", "motiontool.comms.canopen.link", "motiontool.comms.dpl_program")
 
 
 def import_scheme_modules(modules) -> None:

@@ -17,6 +17,7 @@ from motiontool.comms.link import Link
 from motiontool.comms.links import open_link, scan_controllers
 
 SIMULATED_IDS = (1, 2, 3, 4)
+APC_SIM = "apcsim"   # the interface of the simulated APC (Unidrive SP) that runs DPL programs: one controller
 BAUDS = (2400, 4800, 9600, 19200, 38400, 57600, 76800, 115200)   # FC 300 8-32
 
 
@@ -41,6 +42,8 @@ class InterfaceConfig:
             return "Simulator"
         if self.kind == "fc":
             return f"FC: {self.port}" + ("" if "://" in self.port else f" {self.baud} baud")
+        if self.kind == APC_SIM:
+            return "APC simulator"
         return f"{self.kind}: {self.port}"
 
     def spec(self, controller_id: int) -> str:
@@ -114,6 +117,10 @@ class ControllerRegistry:
     def _open(self, config: InterfaceConfig, controller_id: int) -> Link:
         if config.kind == "sim":
             return EmbeddedLink(realtime_factor=self.realtime_factor)
+        if config.kind == APC_SIM:  # paced like the MCO simulator
+            from motiontool.comms.dpl_program import dpl_link
+
+            return dpl_link(realtime_factor=self.realtime_factor)
         return open_link(config.spec(controller_id))
 
     def open_links(self, *, interface: str | None = None) -> list[tuple[int, Link]]:

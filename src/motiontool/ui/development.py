@@ -12,7 +12,9 @@ from PySide6.QtWidgets import QFileDialog, QMessageBox
 from motiontool.aposs.driver import CompileResult, compile_source
 from motiontool.comms.protocol import LinkError
 from motiontool.dpl.driver import CheckResult, check_source
+from motiontool.dpl.image import DplImage
 from motiontool.fileio import atomic_write_bytes
+from motiontool.ui.controllers import APC_SIM, InterfaceConfig
 
 DEFAULT_CONTROLLER = ("embedded", 1)
 
@@ -109,7 +111,9 @@ class Development:
     # --- run -------------------------------------------------------------------------------------------
     def execute(self, *, ask: bool = True) -> bool:
         """F5 (DG 2380-2391): connect, stop a running program (after asking), compile, download to temporary
-        memory, start."""
+        memory, start. A DPL program runs on the simulated APC, an APOSS program on the default interface."""
+        if not self._controller_for_language():
+            return False
         if not self.connect_default():
             return False
         debugger = getattr(self.w, "debugger", None)
@@ -132,13 +136,34 @@ class Development:
                 self.w.messages.ide("Compilation error(s): program not executed")
                 self.goto_first_error(outcome)
                 return False
-            image = outcome.result.image
-            link.download(image.to_bytes(), name=image.name)
+            if isinstance(outcome.result, CompileResult):
+                image = outcome.result.image
+            else:  # a DPL program goes as its source; the watch offers its variables and arrays
+                image = DplImage(self.w.current_editor().property("path") or "Untitled.dpl", outcome.result.source)
+                symbols = outcome.result.symbols
+                self.w.debugger.watch.set_variables(sorted(symbols.variables), sorted(symbols.arrays.items()))
+            link.download(image.to_bytes(), name=Path(image.name).name)
             link.start()
         except LinkError as exc:
             self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: {exc}")
             return False
-        self.w.messages.ide(f"Executing {image.name} on controller {self.w.bridge.controller_id}")
+        self.w.messages.ide(f"Executing {Path(image.name).name} on controller {self.w.bridge.controller_id}")
+        return True
+
+    def _controller_for_language(self) -> bool:
+        """Move the window to the simulated APC for a DPL program, and back to the default interface for APOSS."""
+        editor = self.w.current_editor()
+        dpl = editor is not None and editor.language == "dpl"
+        apc = InterfaceConfig(kind=APC_SIM, first=1, last=1)
+        on_apc = self.w.connection.interface_key == apc.key
+        watch = getattr(getattr(self.w, "debugger", None), "watch", None)
+        if watch is not None:  # the watch offers what the controller has: APC read parameters or MCO data
+            watch.controller_kind = "APC" if dpl else "MCO"
+        if dpl and not on_apc:
+            self.w.controllers.open_interface(config=apc)
+            return self.select_controller(1, interface=apc.key)
+        if on_apc and not dpl:
+            return self.select_controller(DEFAULT_CONTROLLER[1])
         return True
 
     def break_program(self) -> None:
