@@ -184,3 +184,45 @@ def test_downloads_arrays_cam_debugger_and_recordings_over_a_bad_line(tmp_path):
         assert counts["drop"] + counts["corrupt"] > 10
         bad.close()
         clean.close()
+
+
+def test_polling_scope_and_two_nodes_over_a_bad_line(tmp_path, pool):
+    """Free Run (polling): every poll is right or refused, times only grow; two nodes behind one drive print what
+    the embedded bus prints, or the run fails with a clear error."""
+    from motiontool.scope.acquisition import Polling, new_curve
+    from motiontool.scope.curves import Scope
+
+    master, slave = tmp_path / "m.m", tmp_path / "s.m"
+    master.write_text("PULSVEL 2500\nDELAY 1000\nPRINT \"master \", MAPOS\n")
+    slave.write_text("DELAY 1000\nPRINT \"slave \", MAPOS, \" \", GET SYNCFACTS\n")
+    options = RunOptions(seconds=3, settings=["2:SYNCFACTS=7"], nodes=[f"2:{slave}"])
+    out, err = io.StringIO(), io.StringIO()
+    reference = run_program(master, options, out, err), out.getvalue(), err.getvalue()
+    drive = pool.take()
+    try:
+        options.link = f"{drive.url},{BAD},retries=6,seed=5"
+        out, err = io.StringIO(), io.StringIO()
+        code = run_program(master, options, out, err)
+        assert (code, out.getvalue(), err.getvalue()) == reference or (
+            code == 2 and err.getvalue().startswith("motiontool run: "))
+        bad = open_link(f"{drive.url}#1,{BAD},seed=6")
+        bad.download(image("VEL 100\nACC 100\nDEC 100\nmain:\nPOSA 5000\nPOSA 0\nGOTO main\n"))
+        bad.start()
+        scope = Scope()
+        for signal in ("APOS", "CPOS"):
+            new_curve(scope, signal, "poll", "polled")
+        polling = Polling(scope, bad)
+        polling.start()
+        refused = 0
+        for _ in range(60):
+            bad.advance(20)
+            try:
+                polling.poll()
+            except LinkError:
+                refused += 1
+        times, values = scope.curves[0].buffer.arrays()
+        assert len(times) == polling.polls == 60 - refused and polling.polls > 40
+        assert (times[1:] > times[:-1]).all() and values.max() > 0
+        bad.close()
+    finally:
+        drive.stop()
