@@ -212,3 +212,23 @@ def test_a_remote_link_reports_a_loss_once_and_comes_back_by_itself():
         time.sleep(0.01)
     assert link.alive and events == ["Lost connection: no answer", "Connection restored"]
     link.close()
+
+
+def test_drive_command_refuses_bad_set_ups_naming_them(tmp_path):
+    import io
+
+    from motiontool.comms.drive.command import DriveOptions, run_drive
+
+    bad = tmp_path / "bad.m"
+    bad.write_text("POSA\n")
+    for options, expected in (
+            (DriveOptions(["fc:socket://127.0.0.1:0"], [f"1:{bad}"]), "bad.m:1:1: error: POSA needs more arguments"),
+            (DriveOptions(["fc:udp://x"]), "fc listens on socket://HOST:PORT or on pty"),
+            (DriveOptions(["modbus:x"]), "unknown scheme 'modbus' (known: fc:socket://HOST:PORT | fc:pty"),
+            (DriveOptions(["fc:socket://127.0.0.1:0"], ["40"]), "node id 40 is outside 1..32"),
+            (DriveOptions(["fc:socket://127.0.0.1:0"], ["1", "1"]), "--node 1 is given twice"),
+            (DriveOptions(["fc:socket://127.0.0.1:0#3"]), "a listener serves every node"),
+            (DriveOptions(["fc:pty"], clock="sometimes"), "clock 'sometimes'")):
+        out, err = io.StringIO(), io.StringIO()
+        assert run_drive(options, out, err) == 1
+        assert expected in err.getvalue() and out.getvalue() == ""
