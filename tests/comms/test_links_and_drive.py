@@ -81,9 +81,18 @@ def test_event_queue_numbers_events_and_forgets_what_the_master_saw():
     assert EventQueue().after(99)["last"] == 0                  # a master of an earlier drive starts over
 
 
-def local_link(drive, node=1):
-    """A RemoteLink whose transport hands the message bytes straight to the drive node (no wire)."""
-    return RemoteLink(drive.node(node).handle_message, f"local #{node}")
+@pytest.fixture
+def local_link():
+    """Makes RemoteLinks whose transport hands the message bytes straight to a drive node (no wire); closed at the
+    end, so no event poller outlives its test."""
+    made = []
+
+    def make(drive, node=1):
+        made.append(RemoteLink(drive.node(node).handle_message, f"local #{node}"))
+        return made[-1]
+    yield make
+    for link in made:
+        link.close()
 
 
 def test_a_drive_node_answers_a_repeated_request_from_its_cache():
@@ -104,7 +113,7 @@ def test_a_drive_node_answers_a_repeated_request_from_its_cache():
     assert not answer.ok and "damaged request" in answer.error and "checksum" in answer.error
 
 
-def test_remote_link_carries_requests_and_polls_events_in_order():
+def test_remote_link_carries_requests_and_polls_events_in_order(local_link):
     drive = VirtualDrive([1, 2], clock="virtual")
     link = local_link(drive, 2)
     assert link.identify()["node"] == 2 and link.virtual_time
@@ -120,7 +129,7 @@ def test_remote_link_carries_requests_and_polls_events_in_order():
     link.close()
 
 
-def test_realtime_drive_paces_and_refuses_advance():
+def test_realtime_drive_paces_and_refuses_advance(local_link):
     drive = VirtualDrive([1], clock="realtime")
     drive.start()
     try:
@@ -152,7 +161,7 @@ def test_realtime_drive_paces_and_refuses_advance():
         drive.stop()
 
 
-def test_link_timeout_stops_a_running_program_and_says_so():
+def test_link_timeout_stops_a_running_program_and_says_so(local_link):
     drive = VirtualDrive([1], clock="realtime", timeout_s=0.2, timeout_reaction="stop")
     drive.start()
     try:
@@ -170,7 +179,7 @@ def test_link_timeout_stops_a_running_program_and_says_so():
         drive.stop()
 
 
-def test_install_program_saves_and_starts_it_once():
+def test_install_program_saves_and_starts_it_once(local_link):
     drive = VirtualDrive([3], clock="virtual")
     drive.install_program(3, image('PRINT "up"\n'))
     link = local_link(drive, 3)

@@ -24,6 +24,7 @@ from motiontool.comms.protocol import ConnectionLost, LinkError, LinkEvent, Requ
 from motiontool.comms.wire import decode_response, encode_request
 
 POLL_INTERVAL_S = 0.05
+LOST_RETRY_S = 0.25      # while the connection is lost, the poller tries again this often
 
 
 class RemoteLink(Link):
@@ -122,7 +123,7 @@ class RemoteLink(Link):
                     pass            # said once by request(); keep trying: the line may come back
                 except LinkError as exc:  # a refused poll (e.g. a damaged answer): try again next time
                     self._publish(LinkEvent("message", 0, f"event poll failed: {exc}"))
-            self._closed.wait(self.poll_interval_s)
+            self._closed.wait(max(self.poll_interval_s, LOST_RETRY_S) if self._lost else self.poll_interval_s)
 
     def close(self) -> None:
         self._closed.set()
