@@ -127,7 +127,8 @@ class Connection:
         if not self.connect_default():
             return []
         iface = self.registry.interfaces.get(self.interface_key)
-        ids = iface.found if all_in_range else sorted(iface.links)
+        # a simulated controller exists only once something opened it: the open ones are all there are
+        ids = iface.found if all_in_range and iface.config.kind != "sim" else sorted(iface.links)
         found = []
         for cid in ids:
             try:
