@@ -30,8 +30,9 @@ BAUD = 115200
 
 
 def start_drive():
-    proc = subprocess.Popen([sys.executable, "-m", "motiontool", "drive", "--listen", f"fc:pty,baud={BAUD}"],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc = subprocess.Popen([sys.executable, "-m", "motiontool", "drive", "--listen", f"fc:pty,baud={BAUD}",
+                             "--stop-with-parent"], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
     if not select.select([proc.stdout], [], [], 60)[0]:
         proc.kill()
         raise SystemExit("the drive did not start")

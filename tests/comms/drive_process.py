@@ -13,9 +13,13 @@ from contextlib import contextmanager
 
 class DriveProcess:
     def __init__(self, *args: str, listen: str = "fc:socket://127.0.0.1:0"):
-        self.args = ["drive", "--listen", listen, *args]
-        self.proc = subprocess.Popen([sys.executable, "-m", "motiontool", *self.args], stdout=subprocess.PIPE,
-                                     stderr=subprocess.PIPE, text=True)
+        import weakref
+
+        # --stop-with-parent: the drive ends with its stdin pipe, so it never outlives a killed test run
+        self.args = ["drive", "--listen", listen, "--stop-with-parent", *args]
+        self.proc = subprocess.Popen([sys.executable, "-m", "motiontool", *self.args], stdin=subprocess.PIPE,
+                                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        weakref.finalize(self, _terminate, self.proc)
         self._url: str | None = None
 
     @property
@@ -34,6 +38,8 @@ class DriveProcess:
         return self._url
 
     def stop(self) -> tuple[int, str, str]:
+        if self.proc.stdin is not None and self.proc.stdin.closed:
+            self.proc.stdin = None          # closed by the test already (communicate would flush it)
         if self.proc.poll() is None:
             self.proc.send_signal(signal.SIGTERM)
         try:
@@ -42,6 +48,11 @@ class DriveProcess:
             self.proc.kill()
             out, err = self.proc.communicate()
         return self.proc.returncode, out, err
+
+
+def _terminate(proc: subprocess.Popen) -> None:
+    if proc.poll() is None:
+        proc.terminate()
 
 
 @contextmanager

@@ -8,6 +8,7 @@ process then runs until it is interrupted or terminated and stops cleanly (liste
 
 from __future__ import annotations
 
+import os
 import re
 import signal
 import sys
@@ -33,6 +34,7 @@ class DriveOptions:
     timeout_s: float | None = None
     timeout_reaction: str = "stop"
     include_dirs: list[Path] = field(default_factory=list)
+    stop_with_parent: bool = False     # end when stdin reaches EOF or the parent process goes away
 
 
 def add_parser(sub) -> None:
@@ -61,9 +63,12 @@ def add_parser(sub) -> None:
     p.add_argument("--timeout-reaction", choices=REACTIONS, default="stop",
                    help="what a running program does on a link timeout (default stop)")
     p.add_argument("--include", "-I", action="append", type=Path, default=[], metavar="DIR")
+    p.add_argument("--stop-with-parent", action="store_true",
+                   help="also stop when stdin reaches its end or the process that started the drive goes away (for "
+                        "scripts and tests: a drive they start never outlives them)")
     p.set_defaults(func=lambda args: run_drive(DriveOptions(
         args.listen, args.node, args.master_node, args.clock, args.speed, args.timeout_s, args.timeout_reaction,
-        args.include)))
+        args.include, args.stop_with_parent)))
 
 
 def _node_specs(specs: list[str]) -> dict[int, Path | None]:
@@ -103,6 +108,29 @@ def build_drive(options: DriveOptions, err: TextIO = sys.stderr) -> VirtualDrive
     return drive
 
 
+def _watch_parent(stop: threading.Event) -> None:
+    """Set `stop` when stdin ends (the parent closed its pipe or died) or the parent process changes (orphaned)."""
+    parent = os.getppid()
+
+    def stdin_ends() -> None:
+        # the file descriptor, not sys.stdin: a thread blocked in a buffered read holds its lock, and the
+        # interpreter aborts when it finds that lock taken at exit
+        try:
+            while os.read(0, 4096):
+                pass
+        except OSError:
+            pass
+        stop.set()
+
+    def parent_gone() -> None:
+        while not stop.wait(0.5):
+            if os.getppid() != parent:
+                stop.set()
+
+    threading.Thread(target=stdin_ends, name="drive-stdin", daemon=True).start()
+    threading.Thread(target=parent_gone, name="drive-parent", daemon=True).start()
+
+
 def run_drive(options: DriveOptions, out: TextIO = sys.stdout, err: TextIO = sys.stderr) -> int:
     drive = build_drive(options, err)
     if drive is None:
@@ -118,6 +146,8 @@ def run_drive(options: DriveOptions, out: TextIO = sys.stdout, err: TextIO = sys
             print(f"motiontool drive: {exc}", file=err)
             return 1
         drive.start()
+        if options.stop_with_parent:
+            _watch_parent(stop)
         for listener in listeners:
             print(f"listening on {listener.url}", file=out, flush=True)
         while not stop.wait(0.2):
