@@ -5,6 +5,7 @@ refused edit leaves the curve as it was and shows the model's reason in the mess
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import replace
 from pathlib import Path
 
 from PySide6.QtCore import Qt, QTimer
@@ -29,6 +30,7 @@ from motiontool.cameditor import editing
 from motiontool.cameditor.dat import DatError, read_dat, write_dat
 from motiontool.cameditor.history import History
 from motiontool.cameditor.transfer import download_config, upload_config
+from motiontool.cameditor.ui.apc_panel import ApcPanel
 from motiontool.cameditor.ui.cards import (
     CurveDataCard,
     CurveInfoCard,
@@ -115,11 +117,16 @@ class CamEditor(EditsMixin, QMainWindow):
         self.message_line = QLabel()
         self.message_line.setWordWrap(True)
         self.message_line.hide()
+        # the second curve kind: APC CAM tables (cameditor/ui/apc_panel.py); the toolbar serves the MCO curves
+        self.apc_panel = ApcPanel(curve_provider=self.curve, curve_sink=self._add_converted_curve)
+        self.kinds = QTabWidget()
+        self.kinds.addTab(self.main_split, "Fix-point curves (MCO)")
+        self.kinds.addTab(self.apc_panel, "APC tables (DPL)")
         central = QWidget()
         layout = QVBoxLayout(central)
         layout.setContentsMargins(4, 2, 4, 4)
         layout.addWidget(self.message_line)
-        layout.addWidget(self.main_split)
+        layout.addWidget(self.kinds)
         self.setCentralWidget(central)
         self.reset_splitters()
 
@@ -170,6 +177,7 @@ class CamEditor(EditsMixin, QMainWindow):
         }
         bar = self.addToolBar("CAM-Editor")
         bar.setObjectName("cam_toolbar")
+        self.kinds.currentChanged.connect(lambda index: bar.setVisible(index == 0))  # the MCO curves' toolbar
         bar.setToolButtonStyle(Qt.ToolButtonStyle.ToolButtonIconOnly)  # text where there is no icon
         self.array_combo = QComboBox()
         self.array_combo.setMinimumContentsLength(18)
@@ -310,6 +318,16 @@ class CamEditor(EditsMixin, QMainWindow):
         self._set_modified()
         self.refresh(zoom=True)
         return True
+
+    def _add_converted_curve(self, curve: Curve) -> None:
+        """APC table → MCO curve: a new curve array (a free name), shown in the Fix-point curves tab."""
+        taken = {s.curve.name for s in self.slots if s.curve} | {s.name for s in self.slots}
+        name = next(n for n in (curve.name, *(f"{curve.name[:13]}{k}" for k in range(2, 1000))) if n not in taken)
+        self.slots.append(Slot(name, [], replace(curve, name=name)))
+        self.current = len(self.slots) - 1
+        self._set_modified()
+        self.kinds.setCurrentWidget(self.main_split)
+        self.refresh(zoom=True)
 
     def delete_array(self) -> None:
         if self.slot() is None:
