@@ -114,7 +114,9 @@ def build_parser() -> argparse.ArgumentParser:
                                    "node 1, each --node ID:PROGRAM.m on node ID; the virtual master (PULSVEL) of "
                                    "--master-node is the master input of all the others; each output line is "
                                    "prefixed with its node id ('2: text'), --trace columns are 'ID:SIGNAL', "
-                                   "--record writes OUT-nodeID.csv; the time ends when every program has stopped.")
+                                   "--record writes OUT-nodeID.csv; the time ends when every program has stopped. "
+                                   "FILE.dpl (with --node ID:OTHER.dpl): DPL programs on simulated APCs (Unidrive "
+                                   "SP), several on one CTSync line; --set [ID:]MM.PP=VALUE[@MS] (docs/dpl.md).")
     p.add_argument("file", type=Path, metavar="FILE.m|FILE.dpl", nargs="?")
     p.add_argument("--node", action="append", default=[], metavar="ID:PROGRAM.m",
                    help="also run PROGRAM.m on controller ID (1..32) of the same simulated project; repeatable")

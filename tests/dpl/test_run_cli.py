@@ -52,3 +52,20 @@ def test_check_errors_exit_1_and_run_time_errors_exit_2(tmp_path, capsys):
     assert capsys.readouterr().err == f"{crash}:6:1: error: index 2 is outside A%[0 … 1]\n"
     assert main(["run", str(crash), "--set", "18.11"]) == 1
     assert "--set needs MM.PP=VALUE or MM.PP=VALUE@MS" in capsys.readouterr().err
+
+
+def test_a_ctsync_master_and_slave_run_on_one_line(tmp_path, capsys):
+    """§7.5 on node 1 and §7.6 on node 2 (`--node 2:…`): #18.32 = 1 on the master sets control bit 0 and both
+    drives lock to the master's broadcast and move alike; the columns are 'ID:SIGNAL'."""
+    trace = tmp_path / "t.csv"
+    code = main(["run", str(PROGRAMS / "s7_5_ctsync_master.dpl"), "--node", f"2:{PROGRAMS / 's7_6_ctsync_slave.dpl'}",
+                 "--seconds", "6", "--set", "1:18.32=1@100", "--trace", str(trace),
+                 "--signals", "APC_DIGLCK_MODE,APC_PROF_OUT_SPD,APC_RF_POS"])
+    assert (code, capsys.readouterr().err) == (0, "")
+    header, rows = read_trace(trace)
+    assert header == ["time_ms", "1:APC_DIGLCK_MODE", "1:APC_PROF_OUT_SPD", "1:APC_RF_POS", "2:APC_DIGLCK_MODE",
+                      "2:APC_PROF_OUT_SPD", "2:APC_RF_POS"]
+    last = rows[-1]
+    assert last[1] == last[4] == 1 and last[2] == last[5] > 0 and last[3] == last[6]
+    assert main(["run", str(PROGRAMS / "s7_5_ctsync_master.dpl"), "--node", "2:slave.m"]) == 1
+    assert "all of them .dpl" in capsys.readouterr().err

@@ -40,6 +40,17 @@ def dpl_link(*, realtime_factor: float | None = None, service: ApcService | None
     return EmbeddedLink(realtime_factor=realtime_factor, service=service)
 
 
+def dpl_line(node_count: int):
+    """A CTSync line of `node_count` simulated APCs running DPL programs, one Link per node (1..N), one clock."""
+    from motiontool.apc.drive import ApcDrive
+    from motiontool.comms.apc_bus import ApcLineBus
+
+    bus = ApcLineBus([ApcDrive() for _ in range(node_count)])
+    for link in bus.links.values():
+        link.service.attach_program(DplProgram(link.service))
+    return bus
+
+
 def _open_apcsim(spec: LinkSpec) -> EmbeddedLink:
     """`apcsim[#1][,realtime=F]`: the embedded simulated APC with its DPL host (one controller, number 1)."""
     spec.check_options({"realtime"})

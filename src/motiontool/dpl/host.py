@@ -25,6 +25,7 @@ class DplHost:
         self.notify = notify
         self.image: DplImage | None = None
         self.runtime: DplRuntime | None = None
+        self._reported = "idle"   # the Link state last reported (Initial and Background both count as running)
 
     # --- Link operations ---------------------------------------------------------------------------------------
     def op_download(self, image, number=None, name="") -> None:
@@ -88,5 +89,7 @@ class DplHost:
         if kind == "error" and isinstance(value, DplRuntimeError):
             self.notify("error", {"text": value.message, "line": value.loc.line, "col": value.loc.col,
                                   "file": value.loc.file})
-        elif kind == "state":
-            self.notify("program", {"text": _STATES.get(value, value)})
+        elif kind == "state" and _STATES.get(value, value) != self._reported:
+            self._reported = _STATES.get(value, value)
+            if self._reported != "error":  # the error itself was reported with its place
+                self.notify("program", {"text": self._reported})

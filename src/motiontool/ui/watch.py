@@ -37,6 +37,13 @@ AXIS_PROCESS_DATA = ("APOS", "CPOS", "AVEL", "TRACKERR", "AXEND", "STAT", "MAPOS
 PARAMETERS = ("KPROP", "KDER", "KINT", "FFVEL", "VELMAX", "POSERR", "TESTVAL")
 
 
+def _apc_read_parameters() -> tuple[str, ...]:
+    """The APC's read parameters by alias, in number order (the watch of a DPL program on the simulated APC)."""
+    from motiontool.dpl.definitions import read_parameter_names
+
+    return tuple(alias for _, alias in sorted(read_parameter_names().items()))
+
+
 @dataclass
 class WatchEntry:
     kind: str       # "variable" | "signal" | "parameter"
@@ -86,6 +93,7 @@ class WatchPane(QDockWidget):
         self.entries: list[WatchEntry] = []
         self.variables: list[str] = []
         self.arrays: list[tuple[str, int]] = []
+        self.controller_kind = "MCO"   # "APC" when the window runs a DPL program on the simulated APC
         self._reader: Callable[[str, str], object] | None = None
         body = QWidget()
         layout = QVBoxLayout(body)
@@ -152,8 +160,10 @@ class WatchAddDialog(QDialog):
             self.program.addItem(f"{name}[{size}]")
         self.system = QTreeWidget()
         self.system.setHeaderHidden(True)
-        for title, names, kind in (("0x2500 Axis 1 Process Data", AXIS_PROCESS_DATA, "signal"),
-                                   ("Axis 1 Parameters", PARAMETERS, "parameter")):
+        groups = ((("APC read parameters", _apc_read_parameters(), "signal"),) if pane.controller_kind == "APC"
+                  else (("0x2500 Axis 1 Process Data", AXIS_PROCESS_DATA, "signal"),
+                        ("Axis 1 Parameters", PARAMETERS, "parameter")))
+        for title, names, kind in groups:
             top = QTreeWidgetItem([title])
             for name in names:
                 item = QTreeWidgetItem([name])
@@ -190,8 +200,9 @@ class WatchAddDialog(QDialog):
         array = row - len(self.pane.variables)
         is_array = 0 <= array < len(self.pane.arrays)
         self.index.setEnabled(is_array)
-        if is_array:  # DG L2467: only the first 250 elements of an array can be watched
-            self.index.setRange(1, min(self.pane.arrays[array][1], MAX_ARRAY_WATCH))
+        if is_array:  # DG L2467: only the first 250 elements of an array can be watched; DPL counts from 0
+            first = 0 if self.pane.controller_kind == "APC" else 1
+            self.index.setRange(first, min(self.pane.arrays[array][1], MAX_ARRAY_WATCH) - 1 + first)
         self.system.clearSelection()
 
     def add_selected(self, *, system: bool = False) -> None:

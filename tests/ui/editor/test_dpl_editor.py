@@ -73,3 +73,15 @@ def test_saving_as_dpl_switches_the_language(window, tmp_path):
     assert editor.language == "dpl"
     window.live_check()
     assert editor.diagnostics() == []
+
+
+def test_the_outline_lists_tasks_and_labels(window, tmp_path):
+    path = tmp_path / "o.dpl"
+    path.write_text(SOURCE.replace("Pos0{\n", "Pos0{\nloop:\n") + "Background{\ntop:\ngoto top:\n}\n",
+                    encoding="utf-8")
+    editor = window.open_file(path)
+    assert [(i.kind, i.name, i.line) for i in editor.outline()] == [
+        ("task", "Notes", 1), ("task", "Initial", 4), ("task", "Pos0", 7), ("label", "loop", 8),
+        ("task", "Background", 11), ("label", "top", 12)]
+    window.live_check()
+    assert window.outline.item(0).text() == "task: Notes  (1)"

@@ -395,7 +395,9 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
 
     # --- outline ---------------------------------------------------------------------------------------
     def outline(self) -> list[outline.OutlineItem]:
-        """Labels, SUBPROGs and function definitions of the program, in line order."""
+        """Labels, SUBPROGs and function definitions of the program (tasks and labels of DPL), in line order."""
+        if self.lang is dpl_lang:
+            return dpl_lang.outline(self.toPlainText())
         return outline.outline(self.toPlainText())
 
     # --- keys ------------------------------------------------------------------------------------------

@@ -14,11 +14,13 @@ from motiontool.dpl.definitions import definitions
 from motiontool.dpl.functions import function_table
 from motiontool.dpl.parser import KEYWORDS, TASKS
 from motiontool.ui.editor.lang import CompletionItem
+from motiontool.ui.editor.outline import OutlineItem
 
 WORD_RE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*%?")
 PARAM_RE = re.compile(r"#\d{1,3}\.\d{1,3}")
 _LABEL_RE = re.compile(r"^\s*([A-Za-z_][A-Za-z0-9_]*):", re.MULTILINE)
 _VARIABLE_RE = re.compile(r"\b[A-Za-z_][A-Za-z0-9_]*%")
+_TASK_RE = re.compile(r"^\s*([A-Za-z][A-Za-z0-9]*)\s*\{", re.MULTILINE)
 
 
 @dataclass(frozen=True)
@@ -91,3 +93,21 @@ def completion_items(text: str = "") -> list[CompletionItem]:
             seen.add(name.upper())
             items.append(CompletionItem(name, kind, kind))
     return sorted(items, key=lambda i: (i.name.casefold(), i.name))
+
+
+def outline(text: str) -> list[OutlineItem]:
+    """The tasks and labels of a DPL program, in line order (labels inside the Notes prose do not count)."""
+    items: list[OutlineItem] = []
+    notes = False
+    for number, line in enumerate(text.split("\n"), 1):
+        code = line.split("//")[0]
+        if notes:
+            notes = "}" not in code
+            continue
+        task = _TASK_RE.match(code)
+        if task and task.group(1).upper() in TASKS:
+            items.append(OutlineItem("task", TASKS[task.group(1).upper()], number))
+            notes = task.group(1).upper() == "NOTES" and "}" not in code[task.end():]
+        elif (label := _LABEL_RE.match(code)) and label.group(1).upper() not in KEYWORDS:
+            items.append(OutlineItem("label", label.group(1), number))
+    return items
