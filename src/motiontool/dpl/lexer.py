@@ -8,32 +8,14 @@ One statement per line, so NEWLINE is a token. Integer variables carry their ``%
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 
 from motiontool.aposs.diagnostics import CompileError, Location
+from motiontool.aposs.lexer import Token  # the APOSS token: kind, text, value, loc (its macro fields stay empty)
 
 IDENT, INT, FLOAT, STRING, PARAM, OP, NEWLINE, NOTES, EOF = (
     "IDENT", "INT", "FLOAT", "STRING", "PARAM", "OP", "NEWLINE", "NOTES", "EOF")
 
 INT32_MAX = (1 << 31) - 1
-
-
-@dataclass(slots=True)
-class Token:
-    kind: str
-    text: str           # as written
-    value: object       # INT: int; PARAM: (menu, parameter); IDENT: upper-case key; NOTES: the prose
-    loc: Location
-
-    def is_op(self, *ops: str) -> bool:
-        return self.kind == OP and self.text in ops
-
-    def is_word(self, *words: str) -> bool:
-        return self.kind == IDENT and self.value in words
-
-    def __repr__(self) -> str:
-        return f"Token({self.kind}, {self.text!r}, {self.loc})"
-
 
 # Blanks before a token are part of its match; the token starts at its group.
 _TOKEN = re.compile(r"""
