@@ -23,15 +23,22 @@ import re
 import sys
 from pathlib import Path
 
-SEED = Path("/work/shared/seeds/004_16445ecb4420dbd7.txt")
+SEED = Path("/work/shared/seeds/004_16445ecb4420dbd7.txt")   # the vendor manual (OCR text), where at hand
 PROGRAMS = Path(__file__).parent / "programs"
+EXCERPT = PROGRAMS / "seed-004-lines.txt"                      # the seed's lines the fixtures come from
 _FURNITURE = re.compile(r"^\s*(?:[ıIĺ|]\s+)?(?:Using Thi|Manual\s+Information|Manual\s+Info|```|Using This)")
 _SOURCE = re.compile(r"L(\d+)-L(\d+)")
 _ENTRY = re.compile(r"^//\s{3}(.*?)(?:\s+~~\s.*)?$")
 
 
-def seed_lines() -> list[str]:
-    return SEED.read_text(encoding="utf-8").split("\n")
+def seed_lines() -> dict[int, str]:
+    """Seed line number → text, from the excerpt kept with the fixtures."""
+    lines = {}
+    for row in EXCERPT.read_text(encoding="utf-8").split("\n"):
+        if row and not row.startswith("#"):
+            number, _, text = row.partition("\t")
+            lines[int(number)] = text
+    return lines
 
 
 def seed_code(ranges: list[tuple[int, int]]) -> list[tuple[int, str]]:
@@ -40,7 +47,7 @@ def seed_code(ranges: list[tuple[int, int]]) -> list[tuple[int, str]]:
     out = []
     for first, last in ranges:
         for n in range(first, last + 1):
-            text = lines[n - 1].strip()
+            text = lines[n].strip()
             if text and not _FURNITURE.match(text):
                 out.append((n, text))
     return out

@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 
 from motiontool.dpl.driver import check_source
-from tests.dpl.manual import fixture_paths, listed_repairs, repairs, source_ranges, split
+from tests.dpl.manual import SEED, fixture_paths, listed_repairs, repairs, seed_lines, source_ranges, split
 
 FIXTURES = fixture_paths()
 
@@ -30,3 +30,9 @@ def test_the_programs_check_without_diagnostics(path):
     result = check_source(path=path)
     assert [d.format() for d in result.diagnostics] == []
     assert result.program is not None
+
+
+@pytest.mark.skipif(not SEED.exists(), reason="the seed (vendor manual) is not on this machine")
+def test_the_kept_excerpt_is_the_seeds_text():
+    seed = SEED.read_text(encoding="utf-8").split("\n")
+    assert all(seed[n - 1] == text for n, text in seed_lines().items())
