@@ -143,7 +143,7 @@ def test_d05_position_sync_example_homes_synchronises_and_trims_the_offset():
     once per press, re-armed 500 ms after the last pass (each pass re-defines ON TIME 500, so a held input
     steps only once); input 1 low stops (MOTOR STOP). With the default plant the home switch is 8192 qc long
     and HOME_TYPE 0 leaves it at HOME_VEL/10, so homing takes about 13 s."""
-    source = (EXAMPLES / "D05_position_sync.m").read_text()
+    source = (EXAMPLES / "D05_position_sync_corrected.m").read_text()
     presses = [(4, 1, 16000), (4, 0, 16100), (4, 1, 16800), (4, 0, 16900), (4, 1, 17600), (4, 0, 17700)]
     inputs = [(2, 1, 100), (2, 0, 300), (1, 1, 14000), *presses, (1, 0, 19000)]
     run = start(source, settings=dict(FAST, **{"1900": 1000}), inputs=inputs, master=MasterConfig(velocity=5.0))
@@ -169,6 +169,19 @@ def test_d05_position_sync_example_homes_synchronises_and_trims_the_offset():
     assert not run.errors
 
 
+def test_d05_as_printed_reads_parameter_132_when_synchronisation_stops_and_the_controller_reports_112():
+    """D05 as printed (DG 1069): `IF (new_offset != old_offset) AND (GET 132 == 0)` — there is no parameter 132 (the
+    "Offset type" is 19-01, GET 1901): when input 1 goes low the controller reports error 112 ("Unknown param.",
+    DG 11520-11524) at that line and the program's error handler sets the error output 8."""
+    source = (EXAMPLES / "D05_position_sync.m").read_text()
+    line = next(n for n, text in enumerate(source.splitlines(), 1) if "(GET 132 == 0) THEN" in text)
+    inputs = [(2, 1, 100), (2, 0, 300), (1, 1, 14000), (1, 0, 16000)]
+    run = start(source, settings=FAST, inputs=inputs, master=MasterConfig(velocity=5.0))
+    run.advance(17000)
+    assert [(e.number, e.line) for e in run.errors] == [(112, line)]
+    assert run.controller.io.outputs.get(8) == 1 and run.state == "running"   # waiting in errhandle for input 8
+
+
 def test_syncffvel_from_normtrackerr_nearly_removes_the_sync_error():
     """DG 10068-10079: SYNCFFVEL 1000 "adds a feed forward to MPCMD … of VCMD"; "If you find out that your
     normal NORMTRACKERR is 100 percent, then you should set the SYNCFFVEL to 1000" — REG_NORMTRACKERR (SYSVAR
@@ -190,8 +203,8 @@ def test_d04_velocity_sync_example_follows_the_conveyor_and_the_printed_else_sto
     """D04 (DG 850-942): input 1 starts SYNCV, OUT 1 = "In synchronizing mode"; the slave runs at master
     velocity × SYNCFACTS/SYNCFACTM (DG 810, 9318-9324; here 3:2). As printed, "IF (IN 1 == 1) AND (sync_flag
     == 0) … ELSE MOTOR STOP" takes the ELSE branch on the next pass (sync_flag is 1), so the program
-    alternates SYNCV and MOTOR STOP as a drive would and the slave hardly moves; with the condition the
-    comment gives ("Stop if input 1 is low") the slave follows the conveyor."""
+    alternates SYNCV and MOTOR STOP as a drive would and the slave hardly moves; the corrected copy stops once when
+    input 1 is low ("Stop if input 1 is low", the form of D11) and the slave follows the conveyor."""
     source = (EXAMPLES / "D04_velocity_sync.m").read_text()
     settings = {"SYNCFACTM": 2, "SYNCFACTS": 3}
     master = MasterConfig(velocity=20.0)
@@ -201,7 +214,7 @@ def test_d04_velocity_sync_example_follows_the_conveyor_and_the_printed_else_sto
         printed.advance(1)
         fastest = max(fastest, abs(printed.controller.axis.profile.velocity))
     assert fastest < 1.0          # each SYNCV is stopped again in the same program slice: the belt stands
-    fixed = start(source.replace("ELSE\n  MOTOR STOP", "ELSEIF (IN 1 == 0) THEN\n  MOTOR STOP"),
+    fixed = start((EXAMPLES / "D04_velocity_sync_corrected.m").read_text(),
                   settings=settings, inputs=[(1, 1, 100), (1, 0, 2500)], master=master)
     fixed.advance(2000)
     ctl = fixed.controller

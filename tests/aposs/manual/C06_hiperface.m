@@ -1,13 +1,14 @@
 // C6 — ENCPOSOFFS: sync the incremental counter of a Hiperface encoder to its absolute position
 // Source: C:1206-1223 (MCO 305 Command Reference)
 // OCR repairs:
-// - C:1210 "SET ENCODEABSRES" -> "SET ENCODERABSRES" (parameter 32-03; misspelling listed in spec §10 item 34)
 // - C:1206 heading "Program Sample" (manual layout, not code) dropped
+// Not repaired (the manual's own slip, see the corrected copy): C:1210 "SET ENCODEABSRES" misspells 32-03
+//   ENCODERABSRES; `motiontool check` reports the unknown parameter.
 
 MOTOR OFF
 SET ENCODERTYPE 0 // no incremental encoder is connected
 SET ENCODERABSTYPE 1 // Hiperface encoder
-SET ENCODERABSRES 4096 // Hiperface resolution
+SET ENCODEABSRES 4096 // Hiperface resolution
 DELAY 1000
 pos = 0
 RSTORIGIN

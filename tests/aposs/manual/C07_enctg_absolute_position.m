@@ -1,15 +1,16 @@
 // C7 — ENCTGWRITE/ENCTGREAD: read the absolute position with raw RS485 (Hiperface) telegrams
 // Source: C:1248-1278 (MCO 305 Command Reference)
 // OCR repairs:
-// - C:1254 "SET ENCODEABSRES" -> "SET ENCODERABSRES" (parameter 32-03; misspelling listed in spec §10 item 34)
 // - C:1248 heading "Program Sample" (manual layout, not code) dropped
+// Not repaired (the manual's own slip, see the corrected copy): C:1254 "SET ENCODEABSRES" misspells 32-03
+//   ENCODERABSRES; `motiontool check` reports the unknown parameter.
 
 // Example program to receive absolute position
 DIM sendbuffer[20]
 #define HIPER_READ_POS 0x42
 SET ENCODERTYPE 0 // no incremental encoder is connected
 SET ENCODERABSTYPE 1 // hiperface encoder
-SET ENCODERABSRES 4096 // hiperface resolution
+SET ENCODEABSRES 4096 // hiperface resolution
 DELAY 1000
 pos = 0
 WHILE(1) DO

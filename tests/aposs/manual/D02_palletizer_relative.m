@@ -8,6 +8,10 @@
 // - D:657 "IF (IN 1 == 1) AND (fla" completed to "AND (flag == 0) THEN" (flag logic as in D3/D11)
 // - D:671-679 body of SUBPROG errhandle lost, only its comments survive; statements reconstructed from those comments (same handler as D1/D11): err = 1, OUT 8 1, WHILE err DO, IF IN 8 THEN, ERRCLR, err=0, ENDIF, ENDWHILE, OUT 8 0, flag = 0, RETURN
 // - D:680-681 "***** ... ** End of program ****" lines: ENDPROG lost; reconstructed as banner + ENDPROG + end-of-program banner
+// Not repaired (the manual's own slip, see the corrected copy): "IF (IN 1 == 1) AND (flag == 0) THEN … flag = 1
+//   ELSE MOTOR STOP … flag = 0" takes the ELSE branch on the next pass while input 1 stays high (flag is 1 then)
+//   and re-arms the IF for the pass after: the box height is travelled again and again while input 1 is held,
+//   not once per press.
 
 /******** Relative p... */
 // Inputs:

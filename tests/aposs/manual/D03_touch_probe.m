@@ -9,6 +9,10 @@
 // - D:757 "SUBPROG tp handler" -> "SUBPROG tp_handler" (space for underscore)
 // - D:768, 786 "RFTURN" -> "RETURN"
 // - D:773-775 "IILE err DO// ...IF IN 8 THEN// ...ERRCLR// Close error" merged line plus a second "WHILE err DO": kept one "WHILE err DO", restored "IF IN 8 THEN" from the merged line, dropped the duplicate ERRCLR
+// Not repaired (the manual's own slip, see the corrected copy): "IF (IN 1 == 1) AND (flag == 0) THEN … flag = 1
+//   ELSE MOTOR STOP … flag = 0" takes the ELSE branch on the next pass while input 1 stays high (flag is 1 then)
+//   and re-arms the IF for the pass after: CSTART and MOTOR STOP alternate, the axis hardly moves and the touch
+//   probe never comes.
 
 /******* Touch probe positioning sample program for palletizer application example ********/
 // Inputs:  1 Go to position

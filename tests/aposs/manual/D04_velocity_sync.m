@@ -11,6 +11,9 @@
 // - D:892 main loop rebuilt from the column pieces: "MAIN: IF (IN 1 == 1 | ) AND ( | sync_flag == 0) THEN", "SYNCV", "sync_flag = | = 1", "OUT 1 1", "ELSE", "MOTOR STC | OP", "sync_flag = | = 0", "OUT 1 0", "ENDIF", "IF (IN 2 == 1 | ) AND ( | sync_flag == 0) THEN", "OUT 2 1", "man_vel = | GET 19 | 00", "CVEL man_ | _vel", "CSTART"
 // - D:893-897 lines lost at the page break; reconstructed (DOUBTFUL): "WHILE (IN 2 == 1) DO" (only the piece "2 == 1" survives), "CVEL man_vel" (the loop must hand the changed man_vel to the drive; no other CVEL survives), "IF (IN 3 == 1) AND (done == 0) THEN" (mirrors the surviving ELSEIF at D:900)
 // - D:940 "RFTURN" -> "RETURN"
+// Not repaired (the manual's own slip, see the corrected copy): "IF (IN 1 == 1) AND (sync_flag == 0) THEN … sync_flag = 1
+//   ELSE MOTOR STOP … sync_flag = 0" takes the ELSE branch on the next pass while input 1 stays high (sync_flag is 1 then)
+//   and re-arms the IF for the pass after: SYNCV and MOTOR STOP alternate and the slave hardly moves.
 
 /*************************** Velocity synchronizing sample program ***********************/
 // Inputs:  1 Start/stop synchronization

@@ -3,7 +3,6 @@
 // OCR repairs:
 // - D:1009, 1019, 1022, 1029, 1034, 1135 unterminated "/****" banner comments; closed with "/"
 // - D:1041 LaTeX debris "IN $1 == 1$" -> "IN 1 == 1" (also "$1 = 1$" in the comment -> "1 = 1")
-// - D:1069 "GET 132 == 0" -> "GET 1901 == 0" (1901 = "Offset type", 0 = absolute offset; spec §10 item 34)
 // - D:1072 "ENDIE" -> "ENDIF"
 // - D:1076 "SUBPROG increase offset" -> "SUBPROG increase_offset" (space for underscore; called at D:1051)
 // - D:1083 "FLSE" -> "ELSE"
@@ -11,6 +10,8 @@
 // - D:1119 LaTeX debris "Next_step = $1$" -> "Next_step = 1"
 // - D:1121-1137 lines split into tab-separated columns ("E	rror handler", "Set error fla	ag", "hon	ne_done"); columns rejoined
 // - D:1133 LaTeX debris "$home_done = 0$" -> "home_done = 0"
+// Not repaired (the manual's own slip, see the corrected copy): D:1069 "GET 132 == 0" reads a parameter that does
+//   not exist (the "Offset type" is 19-01, GET 1901, as the subprograms read it): the controller reports error 112.
 
 /*************************************/
 // Inputs: 1 Start/stop synchronization
@@ -68,7 +69,7 @@ old_offset = GET SYNCPOSOFFS
   OUT 2 0
                         // Reset home done output after stop
                                                // Save absolute offset if changed
- IF (new_offset != old_offset) AND (GET 1901 == 0) THEN
+ IF (new_offset != old_offset) AND (GET 132 == 0) THEN
     SAVE AXPARS
                         // NOTE: Saving more that 10000 times can damage flash PROM
  ENDIF

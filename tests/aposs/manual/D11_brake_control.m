@@ -10,7 +10,8 @@
 // - D:1812 "POSR (GET 1900	)" -> "POSR (GET 1900)"
 // - D:1815 LaTeX debris "ELSEIF (IN $1 == 0$ )	AND (fla	g == 1) THEN" -> "ELSEIF (IN 1 == 0) AND (flag == 1) THEN"
 // - D:1821, 1840, 1854 unterminated "/****" banners closed with "/"; D:1833 "Di	isengage" rejoined
-// Not repaired (manual content, not OCR): the brake relay is addressed as "OUT 11" (spec §10 item 34: relays are 21/22).
+// Not repaired (the manual's own slip, see the corrected copy): the brake relay is addressed as "OUT 11"; the
+//   outputs are 1-8 (MCO), 27 (FC) and the relays 21/22 (C:3097-3106): the controller reports error 171.
 
 /************************************************************/
 // Inputs:	1	Go to position

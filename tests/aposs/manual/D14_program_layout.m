@@ -8,13 +8,14 @@
 // - D:6066-6067 lost "ENDIF" before "GOTO main" restored (spec §10 item 34)
 // - D:6071 "SUBMAINPROG SUBPROG syncprog" on one line; split into two lines (one statement per line)
 // - D:6035-6037, 6066 subprograms stopprog, calc, break, speedprog are called but their bodies are not in the manual: minimal SUBPROG ... RETURN added
-// - D:6037 "ON TIME 10000 GOSUB break": "break" is the reserved word BREAK (MCO >= 5.00) and cannot name a subprogram; renamed to "break_prog" (DOUBTFUL: not OCR damage, the manual predates BREAK)
+// Not repaired (the manual's own slip, see the corrected copy): D:6037 "ON TIME 10000 GOSUB break": BREAK is a
+//   reserved word (MCO >= 5.00) and cannot name a subprogram: `motiontool check` reports it.
 
 DIM send[12], receive[12]	// Array
 ON ERROR GOSUB errhandle	// Interrupts
 ON INT -1 GOSUB stopprog
 ON PERIOD 500 GOSUB calc
-ON TIME 10000 GOSUB break_prog
+ON TIME 10000 GOSUB break
 
 SET POSERR 10000000	// Parameters
 offset = 0	// Flags/variables
@@ -56,7 +57,7 @@ RETURN
 SUBPROG calc
 // body lost in the manual's OCR
 RETURN
-SUBPROG break_prog
+SUBPROG break
 // body lost in the manual's OCR
 RETURN
 ENDPROG

@@ -2,18 +2,19 @@
 // Source: C:334-348 (MCO 305 Command Reference)
 // Kind: two syntax examples joined into one program; nothing else added.
 // OCR repairs:
-// - C:338 "IF IN1 THEN" -> "IF IN 1 THEN" (command and argument run together; spec §7.16)
-// - C:341 "WAIT IN1 OFF" -> "WAITI 1 OFF" (no WAIT command exists; WAITI n s waits for input state, spec §7.2) (DOUBTFUL)
 // - C:334, 344 headings "Syntax Example" (manual layout, not code) dropped
+// Not repaired (the manual's own slips, see the corrected copy): C:338 "IF IN1 THEN" reads a variable IN1, not
+//   input 1; C:341 "WAIT IN1 OFF": there is no WAIT command (WAITI n OFF waits for an input): `motiontool check`
+//   reports both.
 
 NOWAIT ON // do not wait until position is reached
 POSA 100000
 WHILE (AXEND&2) DO
 // as long as the positioning process is active, repeat loop
-IF IN 1 THEN // if input 01 is set
+IF IN1 THEN // if input 01 is set
 VEL 100 // increase velocity
 POSA 100000
-WAITI 1 OFF // wait until input (key) is off
+WAIT IN1 OFF // wait until input (key) is off
 ENDIF
 ENDWHILE // position reached
 IF (AXEND&64) THEN

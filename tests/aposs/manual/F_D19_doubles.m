@@ -9,8 +9,9 @@
 // - Markdown escapes "\*" removed: D:6563 "2 \*pi" (comment), D:6565 "pi \* 0.5", D:6597 "a \* 2.0"
 // - D:6567 LaTeX debris "$y = \ln(x)$" -> "y = ln(x)"
 // - D:6569 LaTeX debris "$y = x \exp u // returns x raised to u (x<sup>u</sup>)$" -> "y = x exp u // returns x raised to u (x^u)"
-// - D:6577 "dx = fabs(dx)" -> "dx = fabs(dy)" (DOUBTFUL: dx is still unset there; the comment "gives back 6.6666.." and the next line "round(dy)" show dy is meant)
-// Expected: dy = -6.666666666666667, dx = 6.666666666666667 then -7.0, b = -7, finally a = 6 and y = 3.0
+// Not repaired (the manual's own slip, see F_D19_doubles_corrected.m): D:6577 "dx = fabs(dx)" takes dx, which is
+//   still 0.0 there; the comment "this gives back 6.6666.." and the next line "round(dy)" show dy is meant.
+// Expected: dy = -6.666666666666667, dx = 0.0 (6.666666666666667 in the corrected copy) then -7.0, b = -7, finally a = 6 and y = 3.0
 //   (y = a % 2 divides in integer arithmetic, D:6605-6607)
 
 double dx, dy
@@ -31,7 +32,7 @@ y = acos(x - 1.0)
 y = ln(x) // returns the natural logarithm of x
 y = x exp u // returns x raised to u (x^u)
 dy = -100.00 % 15.0 // this will be -6.6666..
-dx = fabs(dy) // this gives back 6.6666..
+dx = fabs(dx) // this gives back 6.6666..
 PRINT "dy = ", dy, " fabs = ", dx
 dx = round(dy) // this will be -7.0000
 PRINT "round = ", dx

@@ -7,19 +7,19 @@
 //   - the elided body "...." of test_func replaced by two statements computing result = a + b + (long) c
 //   - the "..." placeholders between the snippets dropped; PRINT lines added
 // OCR repairs:
-// - D:6639-6642 parameter "index" renamed "idx": INDEX is a command name (D:7013) and may not name a variable
-//   (spec §1.4); not OCR damage, the manual's own slip (DOUBTFUL)
 // - D:6631 closing brace "}" of test_func lost; restored
 // Expected: wert = 5, test[2] = 70
+// Not repaired (the manual's own slip, see the corrected copy): "index" names a variable, but INDEX is a command
+//   (D:7013) and names must not equal command names (D:6425): `motiontool check` reports it.
 
 DIM test[100]
 long a, b
 double c
 long test_func (long a, long b, double c) ; // declaration statement
-long modi(long[] myarray, long idx)
+long modi(long[] myarray, long index)
 {
-    myarray[idx] = myarray[idx] * 10
-    return(idx)
+    myarray[index] = myarray[index] * 10
+    return(index)
 }
 a = 1
 b = 2
