@@ -1,7 +1,7 @@
 """The Design Guide's CAM application programs (DG 1342-1772) on the simulator, with a simulated conveyor master.
 
-The programs are the compiler tests' copies of the manual's (tests/aposs/manual/D07-D09, with their OCR repairs)
-and, for the CAM box fragment, tests/kernel/cam_examples/cambox.m with its set-up; the curve arrays are the manual's
+The programs are the manual's (tests/aposs/manual/D07-D09 and the CAM box fragment F_D10, with their OCR repairs; the
+fragment gets the stamping set-up in the test); the curve arrays are the manual's
 curves (tests/camcurve/conftest.py) encoded with camcurve.layout.encode and restored into the controller as a
 .zbc download would (DG 1466-1468: "Load the .zbc file … by means of Parameters → Restore from file").
 """
@@ -20,7 +20,6 @@ from motiontool.kernel.plant import PlantConfig
 from tests.camcurve.conftest import marker_curve, stamping_curve
 from tests.kernel.helpers import start
 
-EXAMPLES = Path(__file__).parent / "cam_examples"
 MANUAL = Path(__file__).parents[1] / "aposs" / "manual"
 STAMPING, MARKER, SLAVESYNC, SLAVESYNC_PRINTED = (
     MANUAL / name for name in ("D07_cam_stamping.m", "D08_cam_marker_correction.m", "D09_cam_slave_marker_corrected.m",
@@ -35,11 +34,12 @@ SETTINGS = {"SYNCFACTM": 2048, "SYNCFACTS": 55, "POSFACT_Z": 25, "POSFACT_N": 9,
 PLANT = PlantConfig(home_switch_qc=2000)
 
 
-def run_example(program: Path, curve, settings=None, inputs=None, master=None, plant=None):
+def run_example(program: Path | str, curve, settings=None, inputs=None, master=None, plant=None):
     # the conveyor stands still until the test starts it; `master` can carry its photoelectric beam (input 5)
     link = EmbeddedLink(plant or PLANT, master=master or MasterConfig())
     link.call("restore_arrays", arrays=[{"name": curve.name, "values": encode(curve)}])
-    run = start(program.read_text(), settings={**SETTINGS, **(settings or {})}, inputs=inputs, link=link)
+    text = program if isinstance(program, str) else program.read_text()
+    run = start(text, settings={**SETTINGS, **(settings or {})}, inputs=inputs, link=link)
     ctl = run.controller
     for _ in range(200):  # HOME, SETCURVE, POSA CURVEPOS
         run.advance(100)
@@ -162,8 +162,11 @@ def test_printing_with_marker_engages_with_pair_1_and_disengages_with_pair_2_to_
 def test_cam_box_calls_the_drier_and_switches_outputs_at_curve_master_positions():
     """DG 1764-1772: "ON MCPOS 2500 GOSUB drier // Call up a subprogram when the master position 2500 is passed
     in positive direction" — OUT 1 1, DELAY 300, OUT 1 0, once per cycle; CR 2985-3016: ON posint … SETOUT sets an
-    output in the background (output 2 on from 1500 to 2500 of every cycle)."""
-    run = run_example(EXAMPLES / "cambox.m", stamping_curve())
+    output in the background (output 2 on from 1500 to 2500 of every cycle). The fragment (F_D10) runs after the
+    stamping set-up of DG 1474-1494 (ON MCPOS needs SETCURVE or DEFMCPOS first, CR 2894) and two SETOUT lines."""
+    setup = ("DIM stamping[92]\nSETCURVE stamping\nDEFMCPOS 1000\nPOSA CURVEPOS\nON MCPOS 1500 SETOUT 2\n"
+             "ON MCPOS 2500 SETOUT -2\nSYNCC 0\nSYNCCSTART 0\n")
+    run = run_example(setup + (MANUAL / "F_D10_cam_box.m").read_text(), stamping_curve())
     ctl = run.controller
     start_conveyor(ctl, ramp_ms=10)
     trace = []

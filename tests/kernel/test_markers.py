@@ -247,11 +247,10 @@ def test_d06_marker_sync_example_measures_the_slave_distance_then_synchronises()
     """D06 (DG 1203-1340): input 2 measures the slave marker distance while running CVEL "Measuring velocity",
     then SET SYNCMPULSS (total_dist rnd marker_number); input 1 starts SYNCM with external markers
     (SYNCMTYPM/S 2) and the teddy (slave marker) is put into the box (master marker)."""
-    source = (EXAMPLES / "D06_marker_sync.m").read_text()
     # As printed, "IF (IN 1 == 1) AND (sync_flag == 0) … ELSE MOTOR STOP" also stops on the next pass while
-    # input 1 stays high (sync_flag is 1 then): the program would alternate SYNCM and MOTOR STOP. The
-    # comment says "Stop when input 1 is low", so the test runs it with that condition.
-    source = source.replace("ELSE\nMOTOR STOP", "ELSEIF (IN 1 == 0) THEN\nMOTOR STOP")
+    # input 1 stays high (sync_flag is 1 then): the program would alternate SYNCM and MOTOR STOP. The corrected copy
+    # stops once when input 1 is low, as the comment says ("Stop when input 1 is low").
+    source = (EXAMPLES / "D06_marker_sync_corrected.m").read_text()
     run = start(source, settings={"1900": 50, "FFVEL": 1000, "KPROP": 100, "SYNCMPULSM": 12000},
                 inputs=[(2, 1, 100), (2, 0, 2500), (1, 1, 2600)],
                 master=MasterConfig(velocity=10.0, marker_period_qc=12000, marker_offset_qc=3000),
@@ -263,6 +262,13 @@ def test_d06_marker_sync_example_measures_the_slave_distance_then_synchronises()
     assert ctl.axis.mode == "sync" and ctl.axis.sync.markers is not None
     assert all(min(s, 12000 - s) <= 25 for s in _slave_at_master_markers(run, period=12000, slave_marker=7000))
     assert not run.errors
+    printed = start((EXAMPLES / "D06_marker_sync.m").read_text(), settings={"FFVEL": 1000},
+                    inputs=[(1, 1, 100)], master=MasterConfig(velocity=10.0))
+    fastest = 0.0
+    for _ in range(1000):
+        printed.advance(1)
+        fastest = max(fastest, abs(printed.controller.axis.profile.velocity))
+    assert fastest < 1.0                       # as printed SYNCM and MOTOR STOP alternate: the slave stands
 
 
 def test_on_statbit_30_reports_a_missing_master_marker_and_syncstatclr_rearms_it():

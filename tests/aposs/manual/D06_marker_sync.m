@@ -21,6 +21,9 @@
 // - D:1307, 1331 "FNDIF" -> "ENDIF"
 // - D:1336 "svnc flag = 0" -> "sync_flag = 0"
 // - D:1338 unterminated "/********" banner closed with "/"
+// Not repaired (the manual's own slip, see the corrected copy): "IF (IN 1 == 1) AND (sync_flag == 0) THEN … sync_flag = 1
+//   ELSE MOTOR STOP … sync_flag = 0" takes the ELSE branch on the next pass while input 1 stays high (sync_flag is
+//   1 then) and re-arms the IF for the pass after: SYNCM and MOTOR STOP alternate and the slave hardly moves.
 
 /******************** Marker synchronizing sample program *********************/
 // Inputs:   1 Start/stop synchronization
