@@ -226,3 +226,18 @@ def test_home_force_demands_home_first_and_again_after_an_axis_parameter_change(
     assert run.prints[4] == "error 106"                        # KPROP (32-60) is an axis parameter
     assert abs(int(run.prints[5].split()[1])) <= 2
     assert run.state == "ended"
+
+
+def test_save_axpars_and_glbpars_keep_their_own_groups():
+    """CR 3654-3660: "SAVE GLBPARS saves the range of global parameters (group 30-5* and group 33-8*), and application
+    parameters (group 19-**) … SAVE AXPARS saves all other axes parameters"; DG 10849 saves CANBAUD (33-91) with
+    SAVE GLBPARS. Unsaved SET values go back at the program's end (CR 3896-3899). Decision K50."""
+    program = "SET KPROP 77\nSET SYNCPOSOFFS 9\nSET ERRCOND 2\nSET CANBAUD 22\nSET I_FUNCTION_2 7\nSAVE {}\n"
+    names = ("KPROP", "SYNCPOSOFFS", "ERRCOND", "CANBAUD", "I_FUNCTION_2")
+    kept = {}
+    for part in ("GLBPARS", "AXPARS"):
+        run = run_source(program.format(part), 100)
+        assert run.state == "ended" and not run.errors
+        kept[part] = [run.controller.params[name] for name in names]
+    assert kept["GLBPARS"] == [30, 0, 2, 22, 7]
+    assert kept["AXPARS"] == [77, 9, 0, 20, 0]

@@ -9,6 +9,7 @@ from __future__ import annotations
 from motiontool.kernel import io as iomod
 from motiontool.kernel.errors import ControllerError
 from motiontool.kernel.homing import Homing
+from motiontool.kernel.parameters import is_axis_parameter, is_global_parameter, is_user_parameter
 from motiontool.kernel.sysvars import read_sysvar
 from motiontool.kernel.vm import Wait
 
@@ -408,17 +409,20 @@ def linkgpar(ctl, vm, args):
 
 @command("SAVE AXPARS")
 def save_axpars(ctl, vm, args):
-    ctl.params.save((32, 33))
+    """CR 3654-3656: "SAVE AXPARS saves all other axes parameters" — 32-xx and 33-0x … 33-4x (decision K50)."""
+    ctl.params.save(is_axis_parameter)
 
 
 @command("SAVE GLBPARS")
 def save_glbpars(ctl, vm, args):
-    ctl.params.save((19, 33))
+    """CR 3654-3660: "the range of global parameters (group 30-5* [33-5*] and group 33-8*), and application
+    parameters (group 19-**)"; DG 10849 saves CANBAUD (33-91) with it, so 33-9x too (decision K50)."""
+    ctl.params.save(lambda index: is_global_parameter(index) or is_user_parameter(index))
 
 
 @command("SAVE USRPARS", "SAVEPROM")
 def save_usrpars(ctl, vm, args):
-    ctl.params.save((19,))
+    ctl.params.save(is_user_parameter)
 
 
 @command("SAVE ARRAYS")

@@ -294,7 +294,7 @@ def _communication_objects() -> None:
 def _store(c, value: int, source: str) -> None:
     if int(value) & 0xFFFFFFFF != 0x65766173:  # "save" (CiA 301 7.5.2.13)
         raise ObjectError(ABORT_STORE, "write the signature 'save' (0x65766173) to store")
-    c.params.save((19, 32, 33))
+    c.params.save(lambda index: index // 100 in (19, 32, 33))  # 1010 'save all parameters'
 
 
 def _restore(c, value: int, source: str) -> None:

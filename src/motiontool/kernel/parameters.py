@@ -21,6 +21,15 @@ def raw_value(parameter: Parameter, value: int | float) -> int:
 PRGPAR_INDEX = 3380
 
 
+def is_user_parameter(index: int) -> bool:
+    return index // 100 == 19
+
+
+def is_global_parameter(index: int) -> bool:
+    """33-5x … 33-9x: I/O configuration, the global parameters and the MCO port settings (decision K50)."""
+    return index // 100 == 33 and index % 100 >= 50
+
+
 def is_axis_parameter(index: int) -> bool:
     """32-xx and 33-0x … 33-4x; the global parameters are 33-5x … 33-9x (I/O configuration, global, MCO port; DG
     2808 "the functions of the inputs and outputs and the standard parameters … in 33-5* and 33-8*", decision K47)."""
@@ -70,10 +79,11 @@ class ParameterStore:
         """Fast access by code name inside the kernel: params["KPROP"]."""
         return self.values[self.db.get(name).index]
 
-    def save(self, groups: tuple[int, ...]) -> None:
-        """SAVE AXPARS / GLBPARS / USRPARS: keep the current values of these groups past the program."""
+    def save(self, which: Callable[[int], bool]) -> None:
+        """SAVE AXPARS / GLBPARS / USRPARS: keep the current values of the parameters `which` selects past the
+        program."""
         for index, value in self.values.items():
-            if index // 100 in groups:
+            if which(index):
                 self.saved[index] = value
 
     def restore(self) -> None:

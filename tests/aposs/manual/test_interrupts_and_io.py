@@ -9,9 +9,9 @@ import pytest
 
 from motiontool.kernel.master import MasterConfig
 from motiontool.kernel.plant import PlantConfig
+from tests.kernel.helpers import start
 
 from .helpers import run_manual, source, variables
-from tests.kernel.helpers import start
 
 IDLE = "WHILE 1 DO\nENDWHILE\n"  # the main loop a syntax example needs to keep its interrupts alive
 
