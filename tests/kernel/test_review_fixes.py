@@ -104,3 +104,18 @@ def test_cli_set_with_a_bad_number(tmp_path):
     proc = subprocess.run([sys.executable, "-m", "motiontool", "run", str(program), "--set", "KPROP=abc"],
                           capture_output=True, text=True, timeout=60)
     assert proc.returncode == 1 and "not a whole number" in proc.stderr
+
+
+def test_endswmod_chooses_coasting_or_a_controlled_stop_at_a_limit_switch():
+    """DG 10121-10134: 33-40 ENDSWMOD "defines the behavior when a positive or negative hardware end limit is
+    activated": [0] Call error handler, [1] Controlled stop; DG 11624: "the controller (depending on the par. 33-40 …)
+    is automatically switched off". Error 125 is raised either way and the handler is called; with 0 the ERRCOND
+    reaction (default coast: control off), with 1 the axis brakes with the stop ramp and stays in position control.
+    Before, no code read ENDSWMOD (K13)."""
+    src = ("ON ERROR GOSUB eh\nVEL 50\nACC 100\nDEC 100\nPOSA 100000\n"
+           "SUBMAINPROG\nSUBPROG eh\nPRINT AXEND & 64, \" \", AVEL\nERRCLR\nRETURN\nENDPROG\n")
+    for endswmod, control in ((0, "64"), (1, "0")):
+        run = run_source(src, 5000, settings={"I_FUNCTION_2": 5, "ENDSWMOD": endswmod},
+                         plant=PlantConfig(pos_limit_switch_qc=30000))
+        assert [e.number for e in run.errors] == [125]
+        assert run.prints[0].split()[0] == control, endswmod     # AXEND bit 6: axis controller off

@@ -467,7 +467,7 @@ class Controller:
         if number == 108:  # DG 8752-8786: the position control is switched off
             self.axis.motor_off()
         if number in AXIS_ERRORS or number == 105:
-            self._error_reaction()
+            self._error_reaction(number)
         if self.program_state == "running" and self.interrupts.error_sub is None:
             self._fail(exc, already_reported=True)
 
@@ -480,9 +480,12 @@ class Controller:
             self._error_reaction()
         self._end_program("error")
 
-    def _error_reaction(self) -> None:
-        """33-83 ERRCOND (DG 10730-10758): 0 coast, 1 coast + brake, 2/3 stop with max. deceleration."""
+    def _error_reaction(self, number: int = 0) -> None:
+        """33-83 ERRCOND (DG 10730-10758): 0 coast, 1 coast + brake, 2/3 stop with max. deceleration. A hardware limit
+        switch (125) with 33-40 ENDSWMOD 1 "Controlled stop" stops with the stop ramp instead of coasting (K13)."""
         mode = self.params["ERRCOND"]
+        if number == 125 and self.params["ENDSWMOD"] == 1 and mode in (0, 1):
+            mode += 2
         a = self.axis
         if mode in (0, 1):
             a.motor_off()
