@@ -251,3 +251,14 @@ def test_a_sync_command_in_cam_mode_switches_the_marker_correction_it_names():
     run.advance(1000)
     assert ctl.axis.sync.markers is None and ctl.axis.mode == "cam"
 
+
+
+def test_syncmmaxcorr_is_in_slave_qc_also_when_the_curve_master_is_corrected():
+    """DG 10020: "SYNCMMAXCORR … This is working with SYNCM and SYNCC. The value is given in qc (slave)". With 1 MU =
+    2 master qc (SYNCFACTM 2, SYNCFACTS 1) the gear turns one master qc into half a slave qc, so a curve master
+    correction of x MU moves the slave x slave qc: SYNCMMAXCORR 100 allows 100 MU (it allowed 50, taken as master
+    qc). K34."""
+    run = run_cam("SYNCCMM", line(max_correction=0), master=boxes(period=20000, offset=7000),
+                  settings={"SYNCFACTM": 2, "SYNCFACTS": 1, "SYNCMMAXCORR": 100}, ms=1000)
+    markers = run.controller.axis.sync.markers
+    assert markers.errors[0] == pytest.approx(500, abs=10) and markers.corrections[:1] == pytest.approx([-100])

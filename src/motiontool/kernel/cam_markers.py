@@ -216,7 +216,11 @@ class CamMarkers:
         if maxcorr < 0:
             _keep(self.corrections, 0.0)
             return  # marker correction switched off: monitoring only
-        limits = [lim for lim in (self.motion.cam.curve.decoded.max_correction, maxcorr / scale) if lim > 0]
+        # SYNCMMAXCORR is "given in qc (slave)" (DG 10020): a slave correction in UU is k qc per UU; a curve master
+        # correction of x MU moves the slave x·SYNCFACTM/SYNCFACTS master qc × SYNCFACTS/SYNCFACTM = x slave qc
+        # through the gear (decision K34)
+        slave_qc = maxcorr if self.side == MASTER else maxcorr / scale
+        limits = [lim for lim in (self.motion.cam.curve.decoded.max_correction, slave_qc) if lim > 0]
         if limits:
             x = max(-min(limits), min(min(limits), x))
         _keep(self.corrections, x)
