@@ -262,3 +262,18 @@ def test_syncmmaxcorr_is_in_slave_qc_also_when_the_curve_master_is_corrected():
                   settings={"SYNCFACTM": 2, "SYNCFACTS": 1, "SYNCMMAXCORR": 100}, ms=1000)
     markers = run.controller.axis.sync.markers
     assert markers.errors[0] == pytest.approx(500, abs=10) and markers.corrections[:1] == pytest.approx([-100])
+
+
+def test_a_changed_tolerance_window_applies_in_cam_mode_from_the_next_curve_restart():
+    """CR 3936-3944 (SETCURVE while SYNCC is active): "33-21 and 33-22 Master and Slave Marker Tolerance Window, and
+    all Curve-Array information will be updated, after the next restart of the curve"; DG 9636 ("Changes of the
+    parameter will become active immediately – not only after the next SYNCM command") is read for SYNCM (K39).
+    The box of the second cycle comes 600 MU late: a window of 100 set from the IDE during that cycle does not
+    reject it yet; the third box, 600 late again, is then outside the window (it applied at once before)."""
+    run = run_cam("SYNCCMM", line(max_correction=0), master=boxes(3500, 14100, 24700), ms=1100)
+    run.link.write_parameter("SYNCMWINM", 100)     # at curve master 11000: the second cycle has begun
+    run.advance(1500)
+    markers = run.controller.axis.sync.markers
+    assert markers.master.count == 2 and len(markers.errors) == 2   # the box at 14100 was accepted
+    run.advance(1000)
+    assert markers.master.count == 2 and run.controller.syncstat() & 32

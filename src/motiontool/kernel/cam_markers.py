@@ -98,9 +98,10 @@ class CamMarkers:
         return self.ctl.params[name]
 
     def read_parameters(self) -> None:
-        """Marker distances and numbers: at SYNCC and at every curve restart (CR 3936-3944)."""
+        """Marker distances, numbers and tolerance windows: at SYNCC and at every curve restart (CR 3936-3944, K39)."""
         self.distance = abs(self._p("SYNCMPULSM") if self.side == MASTER else self._p("SYNCMPULSS"))
         self.every = max(1, self._p("SYNCMARKM") if self.side == MASTER else self._p("SYNCMARKS"))
+        self.window_m, self.window_s = self._p("SYNCMWINM"), self._p("SYNCMWINS")
 
     def restart(self) -> None:
         """SYNCMARKERSTART: forget the markers seen (monitoring, FIFO, READY/FAULT) and start again (DG 7242)."""
@@ -145,13 +146,13 @@ class CamMarkers:
                     self.master.accept(raw, cycle_qc, 0)
                     self.evaluated = True  # counting starts exactly at this marker: no start correction
                     flags |= MMHIT
-            elif self.side == MASTER and self.master.accept(raw, cycle_qc, round(self._p("SYNCMWINM") * scale)):
+            elif self.side == MASTER and self.master.accept(raw, cycle_qc, round(self.window_m * scale)):
                 flags |= MMHIT
                 if (self.master.count - 1) % self.every == 0:
                     x = self.motion.cam.master_position_at(raw - ctl.master.origin)
                     self._measure(x - self._expected())
         if self.side == SLAVE and not self.waiting:
-            window = round(self._p("SYNCMWINS") * scale) if cycle_qc else 0
+            window = round(self.window_s * scale) if cycle_qc else 0
             for raw in slave_events:
                 if self.slave.accept(raw, cycle_qc, window):
                     flags |= SMHIT
@@ -163,7 +164,7 @@ class CamMarkers:
                 flags |= SMERR
                 self._missed()
         elif self.side == MASTER and not self.waiting:
-            window = round(self._p("SYNCMWINM") * scale)
+            window = round(self.window_m * scale)
             if self.master.missing(master_pos, ctl.master.velocity, cycle_qc, window):
                 flags |= MMERR
                 self._missed()
