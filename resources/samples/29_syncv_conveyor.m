@@ -25,9 +25,8 @@ PULSVEL 20000            // 20000 lines/s = 80000 master qc/s
 SYNCV
 DELAY 2000
 PRINT "master ", MAVEL, " qc/s  slave ", AVEL
-SET SYNCFACTS 3          // 3:2 = 120000 qc/s, but VEL 100 % allows only VELMAX;
-                         // the new gear takes effect with the next SYNCV
-SYNCV
+SET SYNCFACTS 3          // 3:2 = 120000 qc/s at once (the gear can change while
+                         // synchronised), but VEL 100 % allows only VELMAX
 DELAY 2000
 PRINT "master ", MAVEL, " qc/s  slave ", AVEL
 MOTOR STOP               // leaves synchronisation with DEC

@@ -240,3 +240,26 @@ def test_the_origin_of_synchronisation_belongs_to_each_syncp():
     assert first == 600                                            # the master has moved meanwhile
     assert kept == 400                                             # 600 − 200, the second SYNCP changed nothing
     assert afresh == 0                                             # no shift carried into the new SYNCM
+
+
+def test_the_gear_changes_during_synchronisation():
+    """DG 796: "Electronic synchronization is very flexible compared to a mechanical shaft … as the gear-ratio and
+    position offset can be adjusted during operation"; 33-10/33-11 change during operation (DG 11210-11211 TRUE). A
+    SET of SYNCFACTS during SYNCV changes the slave velocity (ramped with ACC) and during SYNCP the ratio from the
+    target's current position on — without another SYNC command (K21; before, nothing changed until one)."""
+    run = start("VEL 100\nACC 100\nDEC 100\nSYNCV\nDELAY 1000\nSET SYNCFACTS 2\n" + LOOP, settings=FAST,
+                master=MasterConfig(velocity=20.0))
+    run.advance(1000)
+    assert run.controller.axis.profile.velocity == pytest.approx(20.0)
+    run.advance(1000)
+    assert run.controller.axis.profile.velocity == pytest.approx(40.0)      # 20 qc/ms × 2/1, ramped in 200 ms
+    run = start("VEL 100\nACC 100\nDEC 100\nSYNCP\nDELAY 1000\nSET SYNCFACTS 3\n" + LOOP,
+                settings={"SYNCFACTM": 2, **FAST}, master=MasterConfig(velocity=10.0))
+    ctl = run.controller
+    run.advance(1001)
+    cpos, mapos = ctl.axis.cpos, ctl.master.mapos
+    assert ctl.axis.profile.velocity == pytest.approx(5.0)                  # 10 × 1/2
+    run.advance(1000)
+    assert ctl.axis.sync.locked and ctl.axis.profile.velocity == pytest.approx(15.0)   # 10 × 3/2
+    moved = ctl.axis.sync.target - cpos
+    assert moved == pytest.approx((ctl.master.mapos - mapos) * 3 / 2, abs=2)     # the target went on from there

@@ -131,6 +131,8 @@ class Controller:
             # DG 9199-9200: with HOME_FORCE "after changing axis parameters" the home run must be repeated
             if self.homed and is_axis_parameter(index) and value != self._homed_with.get(index, value):
                 self.homed = False
+            if index in (3310, 3311) and self.axis.mode == "sync":  # SYNCFACTM / SYNCFACTS online (K21)
+                self.axis.sync.regear(self.params["SYNCFACTS"], self.params["SYNCFACTM"])
         if source != "program":  # CR 2779-2810: ON PARAM fires for LCP/SDO/PDO writes, not program writes
             self.interrupts.fire_param(index)
 

@@ -223,6 +223,16 @@ class SyncMotion:
         pg.acceleration = v - v0
         pg.velocity = v
 
+    def regear(self, s: int, m: int) -> None:
+        """SYNCFACTS/SYNCFACTM changed during the synchronisation ("the gear-ratio and position offset can be adjusted
+        during operation", DG 796; decision K21): the target stays where it is and moves on with the new ratio; the
+        slave follows within VEL and ACC/DEC. A factor M of 0 is ignored."""
+        if m == 0:
+            return
+        old, new = self.gear, Gear(s, m, self.gear.input)
+        self.base_slave += old.out - new.out
+        self.gear = new
+
     def correct(self, slave_qc: int) -> None:
         """A marker correction of the slave (qc): realised like an offset (SYNCOFFTIME) or at once."""
         ratio = abs(self.gear.ratio) or 1.0
