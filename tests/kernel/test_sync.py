@@ -244,7 +244,7 @@ def test_the_origin_of_synchronisation_belongs_to_each_syncp():
 
 def test_the_gear_changes_during_synchronisation():
     """DG 796: "Electronic synchronization is very flexible compared to a mechanical shaft … as the gear-ratio and
-    position offset can be adjusted during operation"; 33-10/33-11 change during operation (DG 11210-11211 TRUE). A
+    position offset can be adjusted during operation"; 33-10/33-11 change during operation (DG 11209-11210 TRUE). A
     SET of SYNCFACTS during SYNCV changes the slave velocity (ramped with ACC) and during SYNCP the ratio from the
     target's current position on — without another SYNC command (K21; before, nothing changed until one)."""
     run = start("VEL 100\nACC 100\nDEC 100\nSYNCV\nDELAY 1000\nSET SYNCFACTS 2\n" + LOOP, settings=FAST,
