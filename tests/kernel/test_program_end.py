@@ -33,7 +33,10 @@ def test_a_synchronisation_stops_with_dec_when_its_program_ends(command):
     program that started it; at the end it stops like MOTOR STOP, "with programmed acceleration" (CR 2367-2375).
     Before issue 17 the slave followed the master on after the program had ended."""
     run = start(f"VEL 100\nACC 100\nDEC 50\n{command}\nDELAY 1500\n", settings=FAST, master=MasterConfig(velocity=20))
+    messages = []
+    run.link.subscribe(lambda e: messages.append(e.text) if e.kind == "message" else None)
     _stops_with_dec(run, 50)
+    assert messages == ["the program ended: the synchronisation stops with DEC"]   # the user sees why
 
 
 def test_speed_mode_stops_with_dec_when_its_program_ends():

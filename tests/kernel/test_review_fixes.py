@@ -9,7 +9,7 @@ from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.protocol import LinkError
 from motiontool.kernel.plant import PlantConfig
 
-from .helpers import run_source
+from .helpers import run_source, start
 
 HANDLER = "\nSUBMAINPROG\nSUBPROG eh\nERRCLR\nRETURN\nENDPROG\n"
 
@@ -119,3 +119,21 @@ def test_endswmod_chooses_coasting_or_a_controlled_stop_at_a_limit_switch():
                          plant=PlantConfig(pos_limit_switch_qc=30000))
         assert [e.number for e in run.errors] == [125]
         assert run.prints[0].split()[0] == control, endswmod     # AXEND bit 6: axis controller off
+
+
+def test_a_motion_command_after_motor_off_says_why_the_program_does_not_go_on(tmp_path):
+    """K11 (CR 624-648: "CSTART does not imply MOTOR ON"): after MOTOR OFF a POSA waits for the position control —
+    issue 17 item 8: "whatever the drive does, the user needs to see why the program does not go on". The controller
+    sends a message (the Communication window; `motiontool run` prints it on stderr)."""
+    run = start("MOTOR OFF\nPOSA 1000\nPRINT \"never\"\n")
+    messages = []
+    run.link.subscribe(lambda e: messages.append((e.text, e.line)) if e.kind == "message" else None)
+    run.advance(500)
+    assert run.prints == [] and run.state == "running"
+    assert messages == [("POSA waits: the position control is off (MOTOR OFF); MOTOR ON, ERRCLR or CONTINUE switches "
+                         "it on", 2)]
+    program = tmp_path / "off.m"
+    program.write_text("MOTOR OFF\nCVEL 10\nCSTART\n")
+    proc = subprocess.run([sys.executable, "-m", "motiontool", "run", str(program), "--seconds", "0.2"],
+                          capture_output=True, text=True, timeout=120)
+    assert "CSTART waits: the position control is off (MOTOR OFF)" in proc.stderr

@@ -316,15 +316,17 @@ class CamMotion:
         self.pair = pair
         self.state = WAIT_STOP
 
-    def program_ended(self) -> None:
+    def program_ended(self) -> bool:
         """The program ends in CAM mode (K49): "If the program is closed without the explicit command SYNCCSTOP pnum
         slavepos, then the second point pair will always be used for disengaging" (DG 4054), to the Slave Stop
-        Position (DG 3754-3757); without a second pair the slave stops there at once. A stop under way goes on."""
+        Position (DG 3754-3757); without a second pair the slave stops there at once. A stop under way goes on
+        (False)."""
         if self.state in (WAIT_STOP, DISENGAGE) or self.finish is not None:
-            return
+            return False
         self._final = True
         self.stop(2 if len(self.cam.curve.decoded.start_stop_pairs) > 2 else 0,
                   self.cam.curve.decoded.slave_stop_position)
+        return True
 
     def _pair(self, pnum: int) -> tuple[float, float] | None:
         pairs = self.cam.curve.decoded.start_stop_pairs

@@ -67,14 +67,18 @@ def _limits(ctl, vel_value=None, for_stop=False):
     return a.limits(vel, acc, dec, ramp, jerk)
 
 
-def _motion_allowed(ctl, home_run: bool = False) -> None:
+def _motion_allowed(ctl, command: str = "", home_run: bool = False) -> None:
     """DG 11444-11456: no motion while an error is pending (105) or, with 33-00 HOME_FORCE 1, before a completed
     HOME (106) — HOME itself is the home run that is demanded (DG 9199-9204). A motion command does not switch
-    the motor on (CR 624-648: CSTART does not imply MOTOR ON)."""
+    the motor on (CR 624-648: CSTART does not imply MOTOR ON, K11): the motion waits, and the user is told why."""
     if ctl.error:
         raise ControllerError(105, f"error {ctl.error} is pending")
     if not home_run and ctl.params["HOME_FORCE"] == 1 and not ctl.homed:
         raise ControllerError(106, "HOME_FORCE 1: HOME first (after power on or a changed axis parameter)")
+    if command and not ctl.axis.control_on:
+        line = ctl.vm.line if ctl.vm is not None else None
+        ctl.message(f"{command} waits: the position control is off (MOTOR OFF); MOTOR ON, ERRCLR or CONTINUE "
+                    "switches it on", line)
 
 
 def _check_soft_limits(ctl, target_qc: int) -> None:
@@ -89,8 +93,8 @@ def _check_soft_limits(ctl, target_qc: int) -> None:
         raise ControllerError(111, f"target {target_qc} qc above POSLIMIT")
 
 
-def _position(ctl, vm, target_qc: int):
-    _motion_allowed(ctl)
+def _position(ctl, vm, target_qc: int, command: str):
+    _motion_allowed(ctl, command)
     _check_soft_limits(ctl, target_qc)  # CR 3451: a target beyond an active limit is not started (111)
     axis = ctl.axis
     axis.move_to(target_qc, _limits(ctl))
@@ -101,13 +105,13 @@ def _position(ctl, vm, target_qc: int):
 
 @command("POSA")
 def posa(ctl, vm, args):
-    return _position(ctl, vm, ctl.qc(args[0]))
+    return _position(ctl, vm, ctl.qc(args[0]), "POSA")
 
 
 @command("POSR")
 def posr(ctl, vm, args):
     # CR 3502-3520: relative to the actual position
-    return _position(ctl, vm, ctl.axis.apos + ctl.axis.scaling.uu_to_qc(args[0]))
+    return _position(ctl, vm, ctl.axis.apos + ctl.axis.scaling.uu_to_qc(args[0]), "POSR")
 
 
 @command("VEL")
@@ -134,7 +138,7 @@ def cvel(ctl, vm, args):
 
 @command("CSTART")
 def cstart(ctl, vm, args):
-    _motion_allowed(ctl)
+    _motion_allowed(ctl, "CSTART")
     v = ctl.program_data.speed_value
     if ctl.limit_blocked_direction and v * ctl.limit_blocked_direction > 0:
         raise ControllerError(198, "speed mode again in the direction of the violated limit")
@@ -195,7 +199,7 @@ def waitax(ctl, vm, args):
 
 @command("HOME", "INDEX")
 def home(ctl, vm, args, index_only=False):
-    _motion_allowed(ctl, home_run=not index_only)
+    _motion_allowed(ctl, "INDEX" if index_only else "HOME", home_run=not index_only)
     p, axis = ctl.params, ctl.axis
     home_vel = p["HOME_VEL"]
     if home_vel == 0:

@@ -293,11 +293,14 @@ class Controller:
         with DEC: no program keeps them going (DG 1488: "Empty main loop so that program will not be terminated")."""
         axis = self.axis
         if axis.mode == "cam":
-            axis.sync.program_ended()
+            if axis.sync.program_ended():
+                self.message("the program ended in CAM mode: the slave disengages to the Slave Stop Position")
         elif axis.mode in ("sync", "speed"):
             from motiontool.kernel.commands import _limits
 
+            what = "speed mode" if axis.mode == "speed" else "the synchronisation"
             axis.stop(_limits(self), remember=False)
+            self.message(f"the program ended: {what} stops with DEC")
 
     # --- time ------------------------------------------------------------------------------------------
     def tick(self) -> None:
@@ -560,6 +563,10 @@ class Controller:
     _homed_with: dict = {}    # the axis parameters of that HOME
 
     # --- events ------------------------------------------------------------------------------------------
+    def message(self, text: str, line: int | None = None) -> None:
+        """A notice for the user (Communication window, `motiontool run`'s stderr) that is not an error."""
+        self._emit(Event("message", self.time_ms, text, line=line))
+
     def _emit(self, event: Event) -> None:
         self.events.append(event)
         for listener in self.listeners:

@@ -16,7 +16,6 @@ from __future__ import annotations
 
 from motiontool.aposs.image import ProgramImage
 from motiontool.kernel import io as iomod
-from motiontool.kernel.controller import Event
 
 PROGRAM_NUMBERS = range(0, 91)
 KEEPS_AUTOSTART = (108, 125, 111)   # DG 2752-2757: these errors do not deactivate the mechanism
@@ -164,4 +163,4 @@ class ProgramStore:
 
 
 def _message(controller, text: str) -> None:
-    controller._emit(Event("message", controller.time_ms, text))  # noqa: SLF001 - the controller's event stream
+    controller.message(text)

@@ -28,7 +28,7 @@ def _sync_options(ctl) -> dict:
 
 @command("SYNCV")
 def syncv(ctl, vm, args):
-    _motion_allowed(ctl)
+    _motion_allowed(ctl, "SYNCV")
     ctl.axis.synchronise(SyncMotion("velocity", ctl.master, _gear(ctl), _limits(ctl), **_sync_options(ctl)))
 
 
@@ -40,7 +40,7 @@ def syncp(ctl, vm, args, markers: bool = False):
     makes slave s belong to master m instead. SYNCPOSOFFS and MOVESYNCORIGIN (master qc) shift the slave from
     there, SYNCPOSOFFS "immediately when the command SYNCP follows" (DG 9418). With `markers` it is SYNCM
     (kernel/markers.py)."""
-    _motion_allowed(ctl)
+    _motion_allowed(ctl, "SYNCM" if markers else "SYNCP")
     marker_sync = None
     data = ctl.program_data
     values = ctl.params.values
@@ -176,7 +176,7 @@ def curvepos(ctl, vm, args):
 
 @command("POSA CURVEPOS")
 def posa_curvepos(ctl, vm, args):
-    return _position(ctl, vm, ctl.qc(round(_cam_state(ctl, "POSA CURVEPOS").curvepos_uu())))
+    return _position(ctl, vm, ctl.qc(round(_cam_state(ctl, "POSA CURVEPOS").curvepos_uu())), "POSA CURVEPOS")
 
 
 @command("DEFMCPOS")
@@ -197,7 +197,7 @@ def _syncc(ctl, vm, args, side: str | None = None):
     """SYNCC n / SYNCCMM n / SYNCCMS n: CAM mode for n curve cycles, 0 = until stopped (DG 7261-7263); SYNCCMM and
     SYNCCMS correct with master / slave markers, SYNCMSTART 2000 starts the count at a master marker
     (kernel/cam_markers.py)."""
-    _motion_allowed(ctl)
+    _motion_allowed(ctl, "SYNCC")
     motion = _cam_motion(ctl)
     if motion is not None:  # already in CAM mode: a new cycle count from now, and the marker correction it names
         motion.cycles, motion.cycles_done, motion._final = max(0, args[0]), 0, False
