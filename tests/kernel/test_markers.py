@@ -329,3 +329,15 @@ def test_syncm_with_jittering_master_and_markers_stays_within_the_marker_jitter(
     assert all(abs(c) <= 100 for c in corrections[1:])
     assert all(min(s, 10000 - s) <= 100 for s in _slave_at_master_markers(run))
     assert run_once()[1] == corrections
+
+
+def test_extended_marker_type_ands_the_marker_with_a_second_input():
+    """DG 9581: "An extended marker type realizes a logical AND for marker input and a second input, e.g. to
+    synchronize every second marker with a PLC control. This also influences the command MIPOS. MIPOS only delivers a
+    new value, if the condition is true." Coding (K51): 10·n + t — here 72 = external rising flank (2) AND input 7."""
+    program = "SET SYNCMTYPM 72\nWHILE 1 DO\n  DELAY 100\n  PRINT MIPOS\nENDWHILE\n"
+    run = start(program, master=MasterConfig(velocity=10.0, marker_period_qc=2000, marker_offset_qc=500),
+                inputs=[(7, 1, 300), (7, 0, 700)])
+    run.advance(1000)
+    # markers at 500, 2500, 4500, 6500, 8500 qc (50, 250, 450, 650, 850 ms): input 7 is on for 450 and 650 only
+    assert [int(p) for p in run.prints[:9]] == [0, 0, 0, 0, 4500, 4500, 6500, 6500, 6500]

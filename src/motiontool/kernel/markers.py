@@ -2,7 +2,8 @@
 
 Marker sources (33-19 SYNCMTYPM / 33-20 SYNCMTYPS, DG 9567-9608): 0/1 the encoder's index (Z) pulse,
 rising/falling flank; 2/3 the external marker input, rising/falling flank — input 5 for the master,
-input 6 for the slave (CR 1782-1783, 2272-2273). The simulated machine can carry a marker sensor on
+input 6 for the slave (CR 1782-1783, 2272-2273); the extended type 10·n + t (t = 0…3) takes a marker of type t only
+while input n is on ("a logical AND for marker input and a second input", DG 9581; our coding, decision K51). The simulated machine can carry a marker sensor on
 either side (`MarkerSensor`: products passing a light barrier at master/slave positions, optionally
 irregular or with jitter); it drives input 5/6 like a wired sensor. An edge is latched at the position
 where it happened inside the tick (the crossing is interpolated), so MIPOS/IPOS are exact to ±1 qc
@@ -112,7 +113,11 @@ class MarkerChannel:
 
     def tick(self, p0: float, p1: float, marker_type: int, z_period: int, io) -> list[tuple[int, float]]:
         """Markers in this tick as (latched raw qc, fraction of the tick when it happened). Runs every tick
-        on every controller, so the common cases (no marker passed) return early."""
+        on every controller, so the common cases (no marker passed) return early. An extended type 10·n + t
+        counts a marker of type t only while input n is on (logical AND, DG 9581; decision K51)."""
+        gate = 0
+        if marker_type >= 10:
+            gate, marker_type = divmod(marker_type, 10)
         sensor = self.sensor
         if sensor is not None:  # the sensor is wired to the input; a pulse shorter than 1 ms is seen
             sensor_edges = sensor.edges(p0, p1)
@@ -138,7 +143,7 @@ class MarkerChannel:
                 return _NONE
         else:
             return _NONE
-        if not found:
+        if not found or (gate and not io.inputs.get(gate, 0)):
             return _NONE
         events = [(math.floor(b), f) for b, f in found]
         self.latched_raw = events[-1][0]
