@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import pytest
@@ -222,3 +223,33 @@ def test_d04_velocity_sync_example_follows_the_conveyor_and_the_printed_else_sto
     assert ctl.axis.profile.velocity == pytest.approx(30.0) and ctl.avel() == pytest.approx(30000, abs=50)
     fixed.advance(1500)
     assert ctl.axis.mode == "idle" and ctl.io.outputs.get(1) == 0 and not fixed.errors
+
+
+def test_negative_velocity_filter_smooths_syncp_and_its_error_sum_leaves_no_drift():
+    """DG 9800-9811: "If the speed filter is defined with a negative number, the corresponding value also applies for
+    angle/position synchronization SYNCP … filtering takes place as described above, but the errors made are summed
+    up. This error sum is taken into the calculation with 1000/(τ*10) in each case, so that no position deviation can
+    occur over prolonged periods. The value returned by SYNCERR always contains the error made." SYNCVFTIME −100000:
+    τ = 100 ms. The master runs at 10 qc/ms from the start: the slave's command velocity rises as 1 − e^(−t/τ)
+    (63 % after τ) instead of at ACC; SYNCERR shows the lag; after a few seconds the slave is exactly on the master
+    again, the error sum having decayed with 10 τ (K20)."""
+    program = "VEL 100\nACC 100\nDEC 100\nm0 = MAPOS\nSYNCP\nPRINT m0\n" + IDLE
+    run = start(program, settings={**FAST, "SYNCVFTIME": -100000}, master=MasterConfig(velocity=10.0))
+    ctl = run.controller
+    velocities = []
+    for _ in range(300):
+        run.advance(1)
+        velocities.append(ctl.axis.profile.velocity)
+    # the filtered velocity (1 − e^(−t/τ)) plus the fed-back error sum (a few % of it)
+    assert 10 * (1 - math.exp(-0.5)) <= velocities[50] <= 10 * (1 - math.exp(-0.5)) + 0.8
+    assert 10 * (1 - math.exp(-1)) <= velocities[100] <= 10 * (1 - math.exp(-1)) + 1.2
+    steps = [b - a for a, b in zip(velocities[2:], velocities[3:150], strict=False)]
+    assert all(x >= y - 1e-9 for x, y in zip(steps, steps[1:], strict=False))   # first order: no ACC plateau
+    assert ctl.syncerr() > 300                            # the filter's error is in SYNCERR
+    run.advance(9700)                                     # the error sum decays with 10 τ = 1 s
+    m0 = int(run.prints[0])
+    assert ctl.axis.cpos == pytest.approx(ctl.master.mapos - m0, abs=1)    # no drift left
+    assert abs(ctl.syncerr()) <= 12 and not run.errors     # what is left: the drive lags about 1 ms (10 qc)
+    plain = start(program, settings=FAST, master=MasterConfig(velocity=10.0))
+    plain.advance(51)
+    assert plain.controller.axis.profile.velocity == pytest.approx(50 * ctl.axis.scaling.acceleration(100), abs=0.1)

@@ -3,11 +3,11 @@
 Marker sources (33-19 SYNCMTYPM / 33-20 SYNCMTYPS, DG 9567-9608): 0/1 the encoder's index (Z) pulse,
 rising/falling flank; 2/3 the external marker input, rising/falling flank — input 5 for the master,
 input 6 for the slave (CR 1782-1783, 2272-2273); the extended type 10·n + t (t = 0…3) takes a marker of type t only
-while input n is on ("a logical AND for marker input and a second input", DG 9581; our coding, decision K51). The simulated machine can carry a marker sensor on
-either side (`MarkerSensor`: products passing a light barrier at master/slave positions, optionally
-irregular or with jitter); it drives input 5/6 like a wired sensor. An edge is latched at the position
-where it happened inside the tick (the crossing is interpolated), so MIPOS/IPOS are exact to ±1 qc
-(CR 1767-1815, 2263-2310). Edges of a scripted input (schedule_input) are latched at the tick's position.
+while input n is on ("a logical AND for marker input and a second input", DG 9581; our coding, decision K51). The
+simulated machine can carry a marker sensor on either side (`MarkerSensor`: products passing a light barrier at
+master/slave positions, optionally irregular or with jitter); it drives input 5/6 like a wired sensor. An edge is
+latched at the position where it happened inside the tick (the crossing is interpolated), so MIPOS/IPOS are exact to
+±1 qc (CR 1767-1815, 2263-2310). Edges of a scripted input (schedule_input) are latched at the tick's position.
 
 SYNCM (DG 1143-1340, 9494-10032) is a SYNCP whose slave is shifted so that every SYNCMARKS-th slave
 marker passes when every SYNCMARKM-th master marker does. At a master marker the slave position A is

@@ -142,7 +142,7 @@ class SyncMotion:
     def __init__(self, kind: str, master, gear: Gear, limits, offset=lambda: 0, base_slave: int = 0,
                  accuracy: int = 1000, *, velrel: int = 0, vfilter_ms: float = 0.0, offtime: int = 0,
                  marker_distance: int = 4096, revers: int = 0, ffvel: int = 0, spread_ms: float = 0.0,
-                 shift: int = 0):
+                 pfilter_ms: float = 0.0, shift: int = 0):
         self.kind = kind
         self.master = master
         self.gear = gear
@@ -162,6 +162,9 @@ class SyncMotion:
         self.ffvel = ffvel / 1000.0   # 33-32 SYNCFFVEL: position lead of VCMD·SYNCFFVEL/1000 (DG 10062-10075)
         self._lead = 0.0
         self.spread_ms = spread_ms    # negative SYNCVFTIME: marker corrections take 10 τ (DG 9807-9811)
+        self.pfilter_ms = pfilter_ms if pfilter_ms > 1.0 else 0.0  # negative SYNCVFTIME: τ of the position filter
+        self._command: float | None = None  # the filtered command position (slave qc)
+        self._vf = 0.0                      # its filtered velocity
         self.offset_filter = OffsetFilter()  # master qc
         self.slave_filter = OffsetFilter()   # slave qc (marker corrections)
         self.slave_shift = 0
@@ -198,6 +201,8 @@ class SyncMotion:
                 self.locked = False
             t = self.target = self.base_slave + self.gear.advance(d_input) + self.slave_shift
             vt = (m.velocity + self.offset_filter.velocity) * ratio + self.slave_filter.velocity
+            if self.pfilter_ms:  # negative SYNCVFTIME: the slave follows the filtered command (DG 9800-9811)
+                t, vt = self._filtered(pg.position, pg.velocity, t, vt)
             if self.locked and (abs(vt) > self.vel * (1 + 1e-9) or abs(vt - v0) > self._acc_limit(v0, vt) + 1e-9
                                 or self._reverse_limit(vt) != vt):
                 self.locked = False  # the master is faster or accelerates harder than the slave may follow
@@ -222,6 +227,22 @@ class SyncMotion:
                 pg.position += self._lead
         pg.acceleration = v - v0
         pg.velocity = v
+
+    def _filtered(self, position: float, velocity: float, t: int, vt: float) -> tuple[float, float]:
+        """DG 9800-9811: with a negative SYNCVFTIME the velocity filter "also applies for angle/position
+        synchronization SYNCP and for marker correction SYNCM. In this case filtering takes place as described above,
+        but the errors made are summed up. This error sum is taken into the calculation with 1000/(τ*10) in each
+        case, so that no position deviation can occur over prolonged periods". Each ms: vf += (vt − vf)/τ and
+        C += vf + (T − C − vf)/(10 τ), T the unfiltered target; at constant speed C − T decays with 10 τ, and SYNCERR
+        (T − APOS) contains the error made (decision K20)."""
+        tau = self.pfilter_ms
+        c = self._command
+        if c is None:  # from where the slave's command stands at the start
+            c, self._vf = position, velocity
+        vf = self._vf = self._vf + (vt - self._vf) / tau
+        new = c + vf + (t - c - vf) / (10.0 * tau)  # the error after this ms's filtered step
+        self._command = new
+        return new, new - c
 
     def regear(self, s: int, m: int) -> None:
         """SYNCFACTS/SYNCFACTM changed during the synchronisation ("the gear-ratio and position offset can be adjusted

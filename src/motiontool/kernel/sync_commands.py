@@ -21,9 +21,11 @@ def _gear(ctl, start: int = 0) -> Gear:
 def _sync_options(ctl) -> dict:
     """SYNCVELREL, velocity filter, SYNCOFFTIME, REVERS as of the SYNC command (DG 9462-9843, 8790)."""
     p = ctl.params
-    return {"velrel": p["SYNCVELREL"], "vfilter_ms": velocity_filter_ms(p["SYNCVFTIME"], p["MENCODER"]),
+    vfilter = velocity_filter_ms(p["SYNCVFTIME"], p["MENCODER"])
+    negative = p["SYNCVFTIME"] < 0  # DG 9800: "a negative number … also applies for … SYNCP and … SYNCM"
+    return {"velrel": p["SYNCVELREL"], "vfilter_ms": vfilter, "pfilter_ms": vfilter if negative else 0.0,
             "offtime": p["SYNCOFFTIME"], "marker_distance": p["SYNCMPULSM"], "revers": p["REVERS"],
-            "ffvel": p["SYNCFFVEL"], "spread_ms": 10 * -p["SYNCVFTIME"] / 1000 if p["SYNCVFTIME"] < -999 else 0.0}
+            "ffvel": p["SYNCFFVEL"], "spread_ms": 10 * vfilter if negative else 0.0}
 
 
 @command("SYNCV")
