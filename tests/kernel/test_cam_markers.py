@@ -8,6 +8,8 @@ come 500 late (marker at 3500). Correction window 4000 … 8000, maximum correct
 
 from __future__ import annotations
 
+import math
+
 import pytest
 
 from motiontool.camcurve import Curve, FixPoint, encode
@@ -277,3 +279,48 @@ def test_a_changed_tolerance_window_applies_in_cam_mode_from_the_next_curve_rest
     assert markers.master.count == 2 and len(markers.errors) == 2   # the box at 14100 was accepted
     run.advance(1000)
     assert markers.master.count == 2 and run.controller.syncstat() & 32
+
+
+def _shift_after_the_first_marker(run, ms: int) -> list[float]:
+    """The curve master shift (MU) each ms from the first evaluated marker on."""
+    ctl = run.controller
+    run.advance(10)
+    markers = ctl.axis.sync.markers
+    while not markers.corrections:
+        run.advance(1)
+    out = []
+    for _ in range(ms):
+        out.append(ctl.axis.sync.cam.mu_shift)
+        run.advance(1)
+    return out
+
+
+def test_syncofftime_shapes_a_cam_marker_correction_as_a_trapezoid():
+    """DG 9833-9843 (33-27 SYNCOFFTIME): "The Offset Filter Time defines the time which should be used to compensate
+    one marker distance … a trapezoidal movement … 20 % for acceleration, 60 % with constant velocity, and another
+    20 % … not only used for offsets, but also for start corrections (first marker correction), normal marker
+    corrections". In CAM one marker distance is one curve cycle (10000 MU): SYNCOFFTIME 10000 realises the box's
+    −490 MU in 490 ms, half of it after 245 ms, at most 1.25 × the mean rate (K52; before it was not modelled)."""
+    run = run_cam("SYNCCMM", line(correction_start=0, correction_end=0, max_correction=0), master=boxes(),
+                  settings={"SYNCOFFTIME": 10000})
+    shifts = _shift_after_the_first_marker(run, 700)
+    x = run.controller.axis.sync.markers.corrections[0]      # the box came 490 MU late (see above): −490
+    assert x == pytest.approx(-490)
+    assert shifts[0] > -2 and shifts[245] == pytest.approx(x / 2, abs=3) and shifts[495] == pytest.approx(x, abs=1)
+    assert max(abs(b - a) for a, b in zip(shifts, shifts[1:], strict=False)) == pytest.approx(1.25, abs=0.02)
+    assert shifts[-1] == pytest.approx(x, abs=1)
+
+
+def test_syncmftime_filters_a_cam_marker_correction():
+    """DG 9905-9911 (33-29 SYNCMFTIME): "A marker error is corrected within a period of 2000 ms"; "the time which is
+    needed to get an output corresponding to a steady input should be nearly SYNCMFTIME". SYNCMFTIME 3000: the
+    box's −490 MU are corrected as a first-order filter with the time constant 1 s — 63 % after 1 s, 95 % after 3 s;
+    the boxes that follow measure what is left and do not add it twice (K52)."""
+    run = run_cam("SYNCCMM", line(correction_start=0, correction_end=0, max_correction=0), master=boxes(),
+                  settings={"SYNCMFTIME": 3000})
+    shifts = _shift_after_the_first_marker(run, 3001)
+    x = run.controller.axis.sync.markers.corrections[0]
+    assert x == pytest.approx(-490)
+    assert shifts[990] == pytest.approx(x * (1 - math.exp(-0.99)), abs=3)
+    assert shifts[3000] == pytest.approx(x * (1 - math.exp(-3)), abs=3)
+    assert all(b <= a + 1e-9 for a, b in zip(shifts, shifts[1:], strict=False))       # never back

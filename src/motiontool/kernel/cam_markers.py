@@ -53,6 +53,7 @@ from collections import deque
 
 from motiontool.kernel.cam import CATCHUP, CURVE, ENGAGE, _blend
 from motiontool.kernel.markers import MMERR, MMHIT, SMERR, SMHIT, SYNCSTAT_FAULT, _Side
+from motiontool.kernel.sync import trapezoid_part
 
 MASTER, SLAVE = "master", "slave"
 HISTORY = 1000  # evaluations kept in CamMarkers.corrections / errors
@@ -102,6 +103,11 @@ class CamMarkers:
         self.distance = abs(self._p("SYNCMPULSM") if self.side == MASTER else self._p("SYNCMPULSS"))
         self.every = max(1, self._p("SYNCMARKM") if self.side == MASTER else self._p("SYNCMARKS"))
         self.window_m, self.window_s = self._p("SYNCMWINM"), self._p("SYNCMWINS")
+        # the shaping of a correction (K52): 33-27 SYNCOFFTIME ms per curve cycle of correction, as a 20/60/20
+        # trapezoid; 33-29 SYNCMFTIME: a PT1 filter reaching 95 % in that time (time constant SYNCMFTIME/3)
+        self.offtime = max(0, self._p("SYNCOFFTIME"))
+        mftime = self._p("SYNCMFTIME")
+        self.filter_step = 1.0 - math.exp(-3.0 / mftime) if mftime > 0 else 0.0
 
     def restart(self) -> None:
         """SYNCMARKERSTART: forget the markers seen (monitoring, FIFO, READY/FAULT) and start again (DG 7242)."""
@@ -246,6 +252,9 @@ class CamMarkers:
         else:
             length, position = curve.length, cam.master_position()
         width = (end - start) % length
+        if self.filter_step or self.offtime:
+            self._shaped(not width or (position - start) % length <= width)
+            return
         if not width:  # no window: at once
             delta, self.pending, self.run = self._outstanding(), 0.0, None
         else:
@@ -266,6 +275,38 @@ class CamMarkers:
                 self.run = None
             else:
                 return
+        self._apply(delta)
+
+    def _shaped(self, inside: bool) -> None:
+        """A correction shaped by SYNCMFTIME or SYNCOFFTIME (K52), realised only inside the correction window (or
+        always without one). SYNCMFTIME: each ms 1 − e^(−3/SYNCMFTIME) of what is outstanding ("A marker error is
+        corrected within a period of 2000 ms", DG 9907-9911); a rest waits for the next window. SYNCOFFTIME: "the
+        time which should be used to compensate one marker distance" (DG 9833-9836) — here one curve cycle — as a
+        20/60/20 trapezoid (DG 9838-9843); what is left when the window closes is added at once (as K31)."""
+        if self.filter_step:
+            if inside:
+                total = self._outstanding()
+                delta = total * self.filter_step
+                self.run, self.pending = None, total - delta
+                self._apply(delta)
+            return
+        run = self.run
+        if inside:
+            if run is None or self.pending:  # a new correction: a trapezoid for all that is outstanding
+                amount = self._outstanding()
+                cycle = abs(self._cycle()) or self.motion.cam.curve.length
+                run = self.run = [amount, 0.0, 0.0, 0, max(1.0, self.offtime * abs(amount) / cycle)]
+                self.pending = 0.0
+            run[3] += 1
+            x = run[3] / run[4]
+            realised = run[0] * trapezoid_part(x)
+            delta, run[2] = realised - run[2], realised
+            if x >= 1.0:
+                self.run = None
+        elif run is not None:  # left the window: the rest at once
+            delta, self.run = run[0] - run[2], None
+        else:
+            return
         self._apply(delta)
 
     def _apply(self, delta: float) -> None:

@@ -70,7 +70,7 @@ def velocity_filter_ms(syncvftime: int, master_lines: int) -> float:
     return tau * res / lines / 1000.0
 
 
-def _trapezoid(x: float) -> float:
+def trapezoid_part(x: float) -> float:
     """Part of an offset realised after the fraction x of its time: 20 % accelerate, 60 % constant,
     20 % decelerate (DG 9833-9843); peak speed 1/0.8 of the mean."""
     if x >= 1.0:
@@ -120,7 +120,7 @@ class OffsetFilter:
             move[2] += 1
             total, duration, elapsed, done = move
             x = elapsed / duration
-            new = round(total * _trapezoid(x))
+            new = round(total * trapezoid_part(x))
             inc += new - done
             move[3] = new
             if x < 1.0:
