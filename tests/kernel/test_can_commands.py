@@ -27,7 +27,7 @@ def test_every_command_of_the_can_group_and_the_pdo_links_is_simulated():
 def test_check_warns_about_commands_without_a_simulated_device_and_they_give_the_manuals_failure_result():
     """CR 1232-1243: ENCTGREAD returns TIMEOUT -1 "No answer has been received within 300ms" — the manual's C07
     program then prints its transmission error."""
-    source = (MANUAL / "C07_enctg_absolute_position.m").read_text()
+    source = (MANUAL / "C07_enctg_absolute_position_corrected.m").read_text()  # as printed: ENCODEABSRES (issue 17)
     result = compile_source(source, "c07.m")
     assert result.ok
     warnings = [d.message for d in result.diagnostics if d.severity == "warning"]

@@ -109,21 +109,11 @@ def test_c20_pcd_and_pdo_words_with_bit_and_byte_selectors():
     run = start(source("F_C20_pcd_pdo.m"))
     ctl = run.controller
     ctl.pcd.update({1: 0x1234, 2: 256, 3: 2})
-    ctl.pdo.update({1: 0, 2: 0x0302})
+    ctl.can.pdo.write_element(2, 0x0302)
     run.advance(100)
     assert [ctl.io.outputs.get(n, 0) for n in (1, 2, 3, 4)] == [1, 1, 0, 1]
     assert ctl.pcd[1] == 0               # PCD[2].b1 of 256 is 0, bit 3 of 0 stays clear
-    assert ctl.pdo[1] == 2               # PDO[2].b1 = 2; `PDO[1].3 = 2` stores the lowest bit of 2, i.e. 0
-
-
-def test_d23_sdo2_cob_ids_written_through_sysvar():
-    """DG 7339-7349: the SDO2 COB ids 0x680 + CANNR and 0x100 + CANNR, then the same with COB_NOT_VALID
-    (0x80000000) to disable it."""
-    run = run_manual("F_D23_sysvar_sdo2.m", 100, settings={"CANNR": 5})
-    memory = run.controller.sysvar_memory
-    assert memory[0x01120101] == (0x685 | 0x80000000) - (1 << 32)     # a LONG holds the 32-bit pattern
-    assert memory[0x01120102] == (0x105 | 0x80000000) - (1 << 32)
-    assert not run.errors
+    assert ctl.can.pdo.read_element(1) == 2   # PDO[2].b1 = 2; `PDO[1].3 = 2` stores the lowest bit of 2, i.e. 0
 
 
 def test_d14_program_layout_synchronises_on_input_3_and_handles_errors_with_input_18():
@@ -142,11 +132,11 @@ def test_d14_program_layout_synchronises_on_input_3_and_handles_errors_with_inpu
     assert ctl.error == 0 and variables(run, "sync_flag") == [1] and run.state == "running"
 
 
-@pytest.mark.parametrize("name, command", [("C06_hiperface_corrected.m", "ENCPOSOFFS"),
-                                           ("C07_enctg_absolute_position_corrected.m", "ENCTGWRITE")])
+@pytest.mark.parametrize("name, command", [("C06_hiperface_corrected.m", "ENCPOSOFFS")])
 def test_absolute_encoder_examples_are_reported_as_not_simulated(name, command):
-    """CR 1206-1278: the Hiperface examples need an absolute encoder with its RS485 telegrams, which the simulated
-    machine does not have: the controller reports error 110 naming the command, at its line."""
+    """CR 1206-1223: the Hiperface example needs an absolute encoder, which the simulated machine does not have: the
+    controller reports error 110 naming the command, at its line. (C7's telegrams time out as the manual says:
+    tests/kernel/test_can_commands.py.)"""
     text = source(name)
     run = run_manual(name, 3000)
     line = next(n for n, t in enumerate(text.splitlines(), 1) if command in t and not t.startswith("//"))
