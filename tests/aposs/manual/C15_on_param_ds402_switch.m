@@ -3,7 +3,8 @@
 // OCR repairs:
 // - C:2826-2830 page footer/header lines ("MG.34.R1.02 – VLT", "®", "MCO 305 Command Reference", ...) inside the listing removed
 // - C:2824 heading "Syntax Example 2" (manual layout, not code) dropped
-// Not repaired (manual content, not OCR): the handler reads 0x01606000 but switches on 0x01604000 (spec §10 item 34).
+// Not repaired (the manual's own slip, see the corrected copy): the handler prints the new mode from 0x6060
+//   (sysvar[0x01606000]) but switches on sysvar[0x01604000], the DS402 controlword 0x6040 (C:2833-2835).
 
 // Trigger an interrupt each time the CANopen DS402 "Mode of operation" changes
 ON PARAM 0x01606000 GOSUB OpModeUpdate

@@ -11,8 +11,6 @@ TESTS = MANUAL.parents[1]
 # program → why its described behaviour is not asserted yet
 AWAITING = {
     "C14_on_keypressed.m": "the LCP keypad (ON KEYPRESSED, INKEY) is not simulated",
-    "C15_on_param_ds402_switch.m": "needs a CANopen SDO write to the DS402 object 0x6060 (the CAN link, issue 15)",
-    "C23_sdoreadseg.m": "needs SDOREADSEG from a CANopen node (APOSS CAN commands, issue 15)",
 }
 
 

@@ -142,3 +142,35 @@ def test_absolute_encoder_examples_are_reported_as_not_simulated(name, command):
     line = next(n for n, t in enumerate(text.splitlines(), 1) if command in t and not t.startswith("//"))
     assert [(e.number, e.line) for e in run.errors] == [(110, line)]
     assert command in run.controller.error_history[0].detail
+
+
+def test_c23_segmented_sdo_read_prints_the_string_character_by_character():
+    """CR 3712-3751 (C23): SDOREADSEG "delivers the result in the array given as parameter … one byte of the segmented
+    data (character) in one array element"; printstring prints them with `PRINT chr(arr[ind]);` — one line, no
+    blanks between the characters (K48). Node 3 is a simulated MCO: the program reads its device name (0x1008)
+    instead of an FC 300's software version (object 0x2000, sub 1549, which an MCO does not have)."""
+    from tests.kernel.can_helpers import bus, prints
+
+    text = source("C23_sdoreadseg.m")
+    assert "0x2000, subindex" in text
+    sim = bus({1: text.replace("0x2000, subindex", "0x1008, 0"), 3: ""})
+    sim.run_for(300)
+    name = "MCO 305 (simulated)"
+    assert prints(sim, 1) == ["", "Test segmented SDO unpacked with waiting ", f"number characters {len(name)}",
+                              name + " "]
+
+
+@pytest.mark.parametrize("name, mode_1, mode_2", [
+    ("C15_on_param_ds402_switch.m", "Operation Mode is not supported", "Operation Mode is not supported"),
+    ("C15_on_param_ds402_switch_corrected.m", "Profile position mode", "Velocity mode"),
+])
+def test_c15_on_param_fires_when_another_node_writes_the_ds402_mode_of_operation(name, mode_1, mode_2):
+    """CR 2824-2851: "Trigger an interrupt each time the CANopen DS402 "Mode of operation" changes": ON PARAM
+    0x01606000 (object 0x6060) fires on an SDO write from another node (CR 2779-2810: not on the program's own).
+    As printed the handler switches on sysvar[0x01604000] — the controlword 0x6040, here 0 — so every mode is "not
+    supported"; the corrected copy switches on the mode it printed."""
+    from tests.kernel.can_helpers import bus, prints
+
+    sim = bus({1: source(name) + IDLE, 2: "DELAY 10\nSDOWRITE 1 0x6060 0 1\nDELAY 10\nSDOWRITE 1 0x6060 0 2\n"})
+    sim.run_for(200)
+    assert prints(sim, 1) == ["New DS402 Operation Mode: 1", mode_1, "New DS402 Operation Mode: 2", mode_2]
