@@ -1,5 +1,8 @@
 """Interrupts (spec §6): kinds, priorities, re-triggering, DISABLE/ENABLE, NOWAIT inside handlers."""
 
+from motiontool.kernel.canbus import CanFrame
+
+from .can_helpers import bus, prints
 from .helpers import run_source
 
 HANDLERS = """
@@ -163,3 +166,42 @@ def test_on_mapos_setout_switches_the_output_in_the_background():
     run = run_source("ON +MAPOS 2000 SETOUT 4\nON +MAPOS 6000 SETOUT -4\nPULSVEL 10000\nDELAY 25\nPRINT GET 3441\n"
                      "DELAY 100\nPRINT GET 3441\nDELAY 100\nPRINT GET 3441\n", 1000)
     assert run.prints == ["0", "8", "0"]  # 34-41 digital outputs: output 4 is bit 3
+
+
+def test_on_combit_calls_the_subprogram_when_a_bit_of_the_received_process_data_is_set():
+    """CR 2510-2515: "Call up a subprogram when Bit n of the communication buffer is set … ON COMBIT refers to the
+    first 32 Bits of the process data memory"; CR 3334: "Using ON COMBIT, a function is called up, as soon as the bit
+    n of the PDO changes"; CR 2522-2523: "the subprogram assigned to the lowest bit is worked through first". Node 2
+    receives its RxPDO 1 (COB-ID 0x202); ON COMBIT -n, as ON INT -n, fires when the bit is cleared (decision K53)."""
+    sim = bus({2: """ON COMBIT 5 GOSUB set5
+ON COMBIT -5 GOSUB clear5
+ON COMBIT 2 GOSUB set2
+WAITI 12 ON
+SUBMAINPROG
+SUBPROG set5
+  PRINT "set 5 at ", TIME
+RETURN
+SUBPROG clear5
+  PRINT "clear 5 at ", TIME
+RETURN
+SUBPROG set2
+  PRINT "set 2 at ", TIME
+RETURN
+ENDPROG
+"""})
+    sim.run_for(50)
+    sim.can_bus.inject(CanFrame(0x202, bytes([0x10, 0, 0, 0, 0, 0, 0, 0])))   # bit 5 of byte 1
+    sim.run_for(50)
+    sim.can_bus.inject(CanFrame(0x203, bytes([0x12, 0, 0, 0, 0, 0, 0, 0])))   # another node's PDO: not ours
+    sim.run_for(50)
+    sim.can_bus.inject(CanFrame(0x202, bytes([0x12, 0, 0, 0, 0, 0, 0, 0])))   # bit 2 comes, bit 5 stays
+    sim.run_for(50)
+    sim.can_bus.inject(CanFrame(0x202, bytes([0x00, 0, 0, 0, 0, 0, 0, 0])))
+    sim.run_for(50)
+    sim.can_bus.inject(CanFrame(0x202, bytes([0x12, 0, 0, 0, 0, 0, 0, 0])))   # both at once: bit 2 first
+    sim.run_for(50)
+    events = [p.rsplit(" at ", 1) for p in prints(sim, 2)]
+    assert [e[0] for e in events] == ["set 5", "set 2", "clear 5", "set 2", "set 5"]
+    times = [int(e[1]) for e in events]
+    for when, expected in zip(times, (50, 150, 200, 250, 250), strict=True):
+        assert expected <= when <= expected + 3

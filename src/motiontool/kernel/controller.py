@@ -434,8 +434,12 @@ class Controller:
                     positions["MCPOS"] = mcpos
                     positions["MCPOS_CYCLE"] = curve_cycle_length(self)
             statbits = self.statbits() if "STATBIT" in kinds else 0
+            # ON COMBIT: "the first 32 Bits of the process data memory" (CR 2515) = PDO[1001], bytes 1-4 of PDO 1,
+            # which a received RxPDO 1 fills ("as soon as the bit n of the PDO changes", CR 3334; K53)
+            combits = self.can.pdo.read_element(1001) & 0xFFFFFFFF if "COMBIT" in kinds else 0
             inputs = self.io.inputs
-            actions = self.interrupts.detect(self.time_ms, lambda n: inputs.get(n, 0), positions, statbits, None)
+            actions = self.interrupts.detect(self.time_ms, lambda n: inputs.get(n, 0), positions, statbits, None,
+                                             combits)
         for out, level in actions:
             self.io.outputs[out] = level
         if self.error and self.interrupts.error_sub is not None and not any(

@@ -94,8 +94,10 @@ class Interrupts:
             raise ControllerError(error, f"more than {limit} {group} interrupts")
 
     # --- detection ------------------------------------------------------------------------------------
-    def detect(self, now: int, read_input, positions: dict[str, float], statbits: int, in_handler_of) -> list:
-        """Set pending flags for sources that fired this tick; returns SETOUT actions [(out, value)]."""
+    def detect(self, now: int, read_input, positions: dict[str, float], statbits: int, in_handler_of,
+               combits: int = 0) -> list:
+        """Set pending flags for sources that fired this tick; returns SETOUT actions [(out, value)].
+        `statbits`: the 32 status bits of ON STATBIT; `combits`: the first 32 bits of the process data (ON COMBIT)."""
         actions = []
         for s in self.sources:
             kind = s.kind
@@ -134,8 +136,8 @@ class Interrupts:
                             level = 1 - level
                     actions.append((abs(out), level))
                     fired = False
-            elif kind == "STATBIT":
-                value = (statbits >> (abs(s.number) - 1)) & 1
+            elif kind in ("STATBIT", "COMBIT"):  # bit n 1-based, -n: the bit is cleared (like ON INT -n)
+                value = ((statbits if kind == "STATBIT" else combits) >> (abs(s.number) - 1)) & 1
                 if s.last is not None:
                     fired = bool(value and not s.last) if s.number > 0 else bool(s.last and not value)
                 s.last = value
