@@ -102,7 +102,7 @@ def test_a_drag_recomputes_what_a_full_recompute_gives(qtbot, editor):
     for step, (dm, ds) in enumerate(((2, 15), (4, 40), (-3, -25), (1, 60))):
         box.point_dragged.emit(index, p.master + dm + 0.25, p.slave + ds, False)  # what a mouse move sends
         moved = editor.curve()
-        assert moved.fix_points[index] == FixPoint(p.master + dm + 0.25, p.slave + ds)
+        assert moved.fix_points[index] == FixPoint(p.master + dm, p.slave + ds)  # whole units (decision C17)
         assert moved == _full(moved)
         _check_against_full_recompute(editor, reference)
         at = editor.diagram.drag_marker.pos()  # the dragged point's marker sits where the point is
@@ -114,7 +114,7 @@ def test_a_drag_recomputes_what_a_full_recompute_gives(qtbot, editor):
         assert _labels(editor.curve_info) == _labels(card), step
         assert editor.fix_table.model.curve.fix_points[index] == moved.fix_points[index]
     box.point_dragged.emit(index, p.master + 1.25, p.slave + 60, True)  # release: one undo step
-    final = editing.move_point(curve, index, p.master + 1.25, p.slave + 60)
+    final = editing.move_point(curve, index, p.master + 1, p.slave + 60)
     assert editor.curve() == final and editor.slot().history.undo_label() == "Move point"
     _check_against_full_recompute(editor, reference)
     assert len(editor.diagram.drag_marker.data) == 0 and editor.diagram.points.data["visible"].all()

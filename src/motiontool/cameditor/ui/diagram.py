@@ -1,7 +1,8 @@
 """The curve profile diagram [DG L3587-3682, ide-spec 4.20-4.28, 4.58-4.74] with pyqtgraph.
 
-Left axis: slave position (UU); bottom: master (MU); right axis: velocity, acceleration or jerk when exactly one
-of them is shown (each has its own view box so their scales do not squash each other).  Mouse: hover identifies
+Left axis: slave position (UU); bottom: master (MU); right: one axis for each of velocity, acceleration and jerk
+that is shown, in its colour, with a legend (side_scales.py: each has its own view box so their scales do not
+squash each other).  Mouse: hover identifies
 a fix point (hand cursor), left-drag on a point moves it, left-drag elsewhere zooms to a rectangle (Ctrl keeps
 the aspect ratio), right-drag pans, right-click opens the popup, double-click adds a point.
 """
@@ -18,12 +19,11 @@ from PySide6.QtWidgets import QGraphicsItem
 from motiontool.camcurve.model import Curve
 from motiontool.camcurve.spline import disengage_path, engage_path, profile
 from motiontool.cameditor.ui.drawing import Markers, ScreenCurve, show_one, thin
+from motiontool.cameditor.ui.side_scales import DARK_BLUE, SideScales
 
 # colours of the manual [DG L3599-3600, L3890-3938]
 RED, GREEN = (210, 30, 30), (0, 150, 0)
-BLUE, DARK_BLUE = (30, 80, 230), (0, 0, 130)
-MAGENTA, DARK_MAGENTA = (220, 0, 220), (120, 0, 120)
-CYAN, GREY, BLUE_GREY = (0, 190, 210), (130, 130, 130), (96, 125, 139)
+GREY, BLUE_GREY = (130, 130, 130), (96, 125, 139)
 YELLOW, PALE_GREEN = (230, 190, 0), (170, 230, 170, 110)
 SAMPLES = 1600  # diagram resolution over one cycle (plus every fix point)
 MARKER_SIZE = 9
@@ -171,7 +171,7 @@ class CurveDiagram(pg.PlotWidget):
         plot.setLabel("bottom", "Master", units="MU")
         plot.setLabel("left", "Slave", units="UU")
         plot.hideButtons()
-        for name in ("left", "bottom", "right"):
+        for name in ("left", "bottom"):
             axis = plot.getAxis(name)
             axis.enableAutoSIPrefix(False)
             axis.setStyle(maxTickLevel=1)  # major and one minor level: a calmer grid, and cheaper to paint
@@ -179,18 +179,6 @@ class CurveDiagram(pg.PlotWidget):
             axis.setTextPen(pg.mkPen(30, 30, 30))
         self.curve: Curve | None = None
         self.overlay = Overlay()
-        # secondary view boxes for velocity / acceleration / jerk (right axis) [DG L3811, L3892]
-        self.side: dict[str, pg.ViewBox] = {}
-        for name in ("velocity", "acceleration", "jerk"):
-            vb = pg.ViewBox(enableMenu=False)
-            vb.setMouseEnabled(False, False)
-            vb.disableAutoRange()  # x follows the main view, y is fit_side's: no repaint of it all on new data
-            vb.setXLink(self.box)
-            plot.scene().addItem(vb)
-            vb.setZValue(-5)
-            self.side[name] = vb
-        plot.getAxis("right").setZValue(1)
-        self.box.sigResized.connect(self._sync_side)
         self.box.sigResized.connect(lambda *_: self._draw())
         self.box.sigXRangeChanged.connect(lambda *_: self._draw())
         # base items
@@ -227,7 +215,7 @@ class CurveDiagram(pg.PlotWidget):
         # axes with their grid, the title and the markers of up to 10 000 fix points change only with the view
         # or the points, the hover and drag markers only move: Qt keeps them as pictures, so a drag repaints
         # just the curves
-        for item in (plot.getAxis("left"), plot.getAxis("bottom"), plot.getAxis("right"), plot.titleLabel.item,
+        for item in (plot.getAxis("left"), plot.getAxis("bottom"), plot.titleLabel.item,
                      self.points, self.t_points, self.hover, self.drag_marker):
             item.setCacheMode(QGraphicsItem.CacheMode.DeviceCoordinateCache)
         # pyqtgraph tells the items under the mouse about every move, also while a fix point is dragged, when no
@@ -240,17 +228,11 @@ class CurveDiagram(pg.PlotWidget):
 
         scene.sendHoverEvents = send_hover_unless_dragging
         self.flags: list[pg.GraphicsObject] = []
-        self.side_items = {"velocity": ScreenCurve(pen=pg.mkPen(BLUE, width=1.5)),
-                           "acceleration": ScreenCurve(pen=pg.mkPen(MAGENTA, width=1.5)),
-                           "jerk": ScreenCurve(pen=pg.mkPen(CYAN, width=1.5))}
-        self.limit_lines = {name: [pg.InfiniteLine(angle=0, movable=False,
-                                                   pen=pg.mkPen(color, width=1.5, style=Qt.PenStyle.DashLine))
-                                   for _ in range(2)]
-                            for name, color in (("velocity", DARK_BLUE), ("acceleration", DARK_MAGENTA))}
-        for name, item in self.side_items.items():
-            self.side[name].addItem(item)
-            for line in self.limit_lines.get(name, []):
-                self.side[name].addItem(line)
+        # velocity / acceleration / jerk: own view boxes, axes and legend [DG L3811, L3892]
+        self.scales = SideScales(plot, self.box, self.red)
+        self.side_items, self.limit_lines = self.scales.items, self.scales.limit_lines
+        for axis in self.scales.axes.values():
+            axis.setCacheMode(QGraphicsItem.CacheMode.DeviceCoordinateCache)
         # the exact samples (tables, limits and Zoom Reset use these); the items draw what the view shows of them
         self.samples_x = np.zeros(0)
         self.tangent = np.zeros(0, dtype=bool)
@@ -258,13 +240,7 @@ class CurveDiagram(pg.PlotWidget):
         self.layers: dict[ScreenCurve, np.ndarray] = {}  # item → its y samples over samples_x (NaN: gap)
         self._drawn_for: tuple | None = None
         self._title: str | None = None  # setTitle("") keeps the title row, as for a curve
-        self._shown_side: list[str] | None = None
         self._flag_key: tuple | None = None
-
-    def _sync_side(self) -> None:
-        for vb in self.side.values():
-            vb.setGeometry(self.box.sceneBoundingRect())
-            vb.linkedViewChanged(self.box, vb.XAxis)
 
     # -- drawing ----------------------------------------------------------------------------------------------------
     def clear_curve(self) -> None:
@@ -418,41 +394,26 @@ class CurveDiagram(pg.PlotWidget):
         show_one(self.hover, pts[index] if 0 <= index < len(pts) else None)
 
     def _right_axis(self, shown: list[str], *, fit: bool = True) -> None:
-        """The right axis belongs to velocity, acceleration or jerk when exactly one is shown [DG L3892].
-        ``fit`` scales the right-axis quantities to their curves (not while a point is dragged)."""
-        if not fit and shown == self._shown_side:
+        """Axes and legend for the quantities shown; ``fit`` scales them to their curves (not while a point is
+        dragged: the scales keep still under the mouse)."""
+        if not fit and shown == self.scales.shown:
             return
-        self._shown_side = list(shown)
-        plot = self.getPlotItem()
-        if len(shown) == 1:
-            name = shown[0]
-            units = {"velocity": "UU/MU", "acceleration": "UU/MU²", "jerk": "UU/MU³"}[name]
-            plot.showAxis("right")
-            axis = plot.getAxis("right")
-            axis.linkToView(self.side[name])
-            axis.setLabel(name.capitalize(), units=units)
-        else:
-            plot.hideAxis("right")
-        for name, vb in self.side.items():
-            vb.setVisible(name in shown or (name == "velocity" and self.overlay.velocity_limit)
-                          or (name == "acceleration" and self.overlay.acceleration_limit))
+        ov = self.overlay
+        self.scales.show(shown, {"velocity": ov.velocity_limit, "acceleration": ov.acceleration_limit})
         self.fit_side()
-        self._sync_side()
 
     def fit_side(self) -> None:
         """Scale each right-axis quantity to its curve and its limit lines."""
         ov = self.overlay
-        for name, vb in self.side.items():
-            data = self.layers.get(self.side_items[name])
-            values = list(data[np.isfinite(data)]) if data is not None and len(data) else []
-            limit = {"velocity": ov.velocity_limit_value if ov.velocity_limit else None,
-                     "acceleration": ov.acceleration_limit_value if ov.acceleration_limit else None}.get(name)
-            if limit:
-                values += [limit, -limit]
-            if values:
-                lo, hi = min(values), max(values)
-                span = hi - lo or max(abs(hi), 1e-9)
-                vb.setYRange(lo - 0.08 * span, hi + 0.08 * span, padding=0)
+        self.scales.fit(self.layers, {"velocity": ov.velocity_limit_value if ov.velocity_limit else None,
+                                      "acceleration": ov.acceleration_limit_value if ov.acceleration_limit else None})
+
+    def side_axes(self) -> dict[str, pg.AxisItem]:
+        """The right-hand axes shown, by quantity."""
+        return self.scales.visible_axes()
+
+    def legend_entries(self) -> list[str]:
+        return self.scales.legend_entries()
 
     def _show_overlays(self, curve: Curve | None) -> None:
         ov = self.overlay

@@ -144,9 +144,9 @@ class EditsMixin:
         if self._drag_start is None:
             self._drag_start = slot.curve
         start = self._drag_start
-        try:
-            moved = editing.move_point(start, index, master, slave, snap_on_grid=self.options["snap_on_grid"],
-                                       clamp=True)
+        try:  # the array stores longs: a dragged point lands on whole units (issue 16)
+            moved = editing.move_point(start, index, round(master), round(slave),
+                                       snap_on_grid=self.options["snap_on_grid"], clamp=True)
         except CurveError as exc:
             moved = slot.curve
             self.message(f"Move point: {exc.message}")
