@@ -188,7 +188,8 @@ def test_install_program_saves_and_starts_it_once(local_link):
     link.advance(5)
     link.flush_events()
     assert out == ["up"]
-    assert link.call("list_programs") == [{"number": 0, "name": "p", "autostart": False}]
+    assert link.call("list_programs") == [{"number": 0, "name": "p", "autostart": False, "source": False,
+                                           "stored_at": ""}]
     with pytest.raises(ValueError, match="no node 4"):
         drive.node(4)
 

@@ -118,14 +118,18 @@ def test_testsetp_finds_a_programs_recording_and_reloads_a_rerun():
     assert [c.first_of_set for c in curves] == [True, False, False]
     assert len(curves[0].buffer) == 1000   # DIM test[3000] / 3 values
     first = curves[0].raw()[0].copy()
+    recorded_at = curves[0].source.info["recorded_at_ms"]
     link.advance(10)
     start(link, TESTSETP)
     link.advance(3000)
     reload_testsetp(scope, link, curves[0])
-    assert curves[0].raw()[0][0] > first[0]
+    # the rerun's data, in the curve's place (decision S15): the recording's other curves stay beside it
+    assert curves[0].source.info["recorded_at_ms"] > recorded_at
+    assert np.array_equal(curves[0].raw()[0], first)
     second = load_testsetp(scope, link, list_testsetp(link)[-1]["index"], label="run 2 ")
+    assert second[1].raw()[0][0] == first[0]   # a second run lies over the first (issue 16, 2l)
     diff = compute(DerivedSpec("difference", curves[1].name, second[1].name), lambda n: scope.curve(n).raw())
-    assert diff[1].size == 1000
+    assert diff[1].size == 1000 and np.isfinite(diff[1]).all()
 
 
 def test_tune_shows_overshoot_for_a_high_kprop_and_less_after_lowering_it():

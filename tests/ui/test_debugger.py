@@ -110,8 +110,9 @@ def test_watch_variable_array_element_and_process_data(window, qtbot):
     assert dialog.program.currentItem().text() == "i" and not dialog.index.isEnabled()
     dialog.add_button.click()
     apos = dialog.system.topLevelItem(0).child(0)
+    dialog.program.clearSelection()
     dialog.system.setCurrentItem(apos)
-    dialog.add_selected(system=True)
+    dialog.add_button.click()
     assert [e.key for e in pane.entries] == ["arr[3]", "i", "APOS"]
     window.debugger.go()
     window.debugger.watch_start()

@@ -46,6 +46,7 @@ class CodeGen(ExpressionCode):
         self.label_fixups: list[tuple[int, str]] = []
         self.loop_fixups: list[tuple[int, str]] = []
         self.break_targets: list[list[int]] = []
+        self.statement_pc = 0  # pc of the statement being generated (mark_statement)
         self._temps = 0
         self._doubles: dict[float, int] = {}
         self._strings: dict[str, int] = {}
@@ -77,6 +78,7 @@ class CodeGen(ExpressionCode):
     def mark_statement(self, stmt: ast.Stmt) -> None:
         loc = stmt.loc
         file = self.img.files.index(loc.file) if loc.file in self.img.files else 0
+        self.statement_pc = self.pc  # where the statement begins: before its STMT stop in a debug build
         self.img.lines.append(image.LineEntry(self.pc, file, loc.line, loc.col))
         if self.img.debug:
             self.emit(Op.STMT, len(self.img.lines) - 1)
@@ -395,7 +397,7 @@ class CodeGen(ExpressionCode):
             self.patch(pc, self.pc)
 
     def s_While(self, s: ast.While) -> None:
-        top = self.pc
+        top = self.statement_pc  # each pass stops at the WHILE line again (single step, a breakpoint there)
         self.truth(s.cond)
         out = self.emit(Op.JZ)
         self.break_targets.append([out])

@@ -62,8 +62,14 @@ class Link(ABC):
     def write_parameter(self, key: str | int, value: int) -> None:
         self.call("write_parameter", key=key, value=value)
 
-    def download(self, image_bytes: bytes, number: int | None = None, name: str = "") -> None:
-        self.call("download", image=base64.b64encode(image_bytes).decode("ascii"), number=number, name=name)
+    def download(self, image_bytes: bytes, number: int | None = None, name: str = "", *,
+                 source: dict[str, str] | None = None, stack_size: int | None = None) -> None:
+        """Download a program image; `source` (file → text, the program first) stores its source with it
+        (Include Sourcecode), `stack_size` is the Settings → Compiler stack size. Both only when given, so a link
+        whose controller does not know them still downloads."""
+        extra = {key: value for key, value in (("source", source), ("stack_size", stack_size)) if value}
+        self.call("download", image=base64.b64encode(image_bytes).decode("ascii"), number=number, name=name,
+                  **extra)
 
     def start(self, number: int | None = None, step: bool = False) -> None:
         """Start a program; with `step` (Prepare Singlestep) it stops before its first statement."""

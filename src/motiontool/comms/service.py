@@ -4,6 +4,7 @@ events into LinkEvents. The embedded link runs it in-process; the virtual drive 
 from __future__ import annotations
 
 import base64
+import time
 from collections.abc import Callable
 from typing import Any
 
@@ -15,6 +16,7 @@ from motiontool.kernel.controller import Controller, Event
 from motiontool.kernel.errors import ControllerError
 from motiontool.kernel.programs import ProgramStore
 from motiontool.kernel.sysvars import read_sysvar, sysvar_name
+from motiontool.kernel.vm import DEFAULT_STACK_SIZE
 
 RESETS = ("parameters", "user", "arrays", "all")  # Controller → Reset (op_reset)
 
@@ -52,6 +54,10 @@ class ControllerService:
         self.controller = controller or Controller()
         self.store = ProgramStore()          # programs saved on the controller, Autostart and Restart
         self.temporary: ProgramImage | None = None
+        self.name = ""                          # Parameters → Name (DG 2870-2882)
+        self.sources: dict[int, dict] = {}      # program number → {"files", "main", "stored_at"} (Include Sourcecode)
+        self.stack_sizes: dict[int | None, int] = {}  # program (None = temporary) → its Settings → Compiler stack size
+        self.wipe_at_power_on = False           # Memory ▸ Delete EPROM (DG 2908-2946)
         self.listeners: list[Callable[[LinkEvent], None]] = []
         self.controller.listeners.append(self._forward)
         self.stream_signals: list[tuple[str, Callable]] = []
@@ -107,7 +113,14 @@ class ControllerService:
         from motiontool import __version__
 
         return {"product": "MCO 305 (simulated)", "firmware": f"motiontool {__version__}",
-                "protocol": PROTOCOL_VERSION}
+                "protocol": PROTOCOL_VERSION, "name": self.name}
+
+    def op_set_name(self, name) -> None:
+        """Parameters → Name (DG 2870-2882): "Names cannot be longer than 8 characters and must be uppercase"."""
+        name = str(name)
+        if len(name) > 8 or name != name.upper():
+            raise ValueError(f"controller name {name!r}: at most 8 characters, upper case")
+        self.name = name
 
     def op_status(self) -> dict:
         c = self.controller
@@ -152,7 +165,7 @@ class ControllerService:
             values = [int(v) for v in entry["values"]]
             memory.dim(i, str(entry["name"]), [len(values)]).data[:] = values
 
-    def op_download(self, image, number=None, name="") -> None:
+    def op_download(self, image, number=None, name="", source=None, stack_size=None) -> None:
         program = ProgramImage.from_bytes(base64.b64decode(image))
         if name:
             program.name = name
@@ -160,16 +173,35 @@ class ControllerService:
             self.temporary = program
         else:
             self.store.save(number, program)
+            self.sources.pop(number, None)
+            if source:  # Include Sourcecode (DG 2643-2669): the program and all its include files
+                files = {str(k): str(v) for k, v in source.items()}
+                self.sources[number] = {"files": files, "main": next(iter(files)),
+                                        "stored_at": time.strftime("%Y-%m-%d %H:%M:%S")}
+        self.stack_sizes[number] = int(stack_size) if stack_size else DEFAULT_STACK_SIZE
+
+    def op_upload_source(self, number) -> dict:
+        """Upload (DG 2671-2675): only programs stored with their source."""
+        if number not in self.sources:
+            raise ValueError(f"program {number} was stored without its source")
+        return dict(self.sources[number])
+
+    def op_upload_program(self, number) -> str:
+        if number not in self.programs:
+            raise ValueError(f"no program {number}")
+        return base64.b64encode(self.programs[number].to_bytes()).decode("ascii")
 
     @property
     def programs(self) -> dict[int, ProgramImage]:
         return self.store.programs
 
     def op_list_programs(self) -> list[dict]:
-        return self.store.listing()
+        return [{**p, "source": p["number"] in self.sources,
+                 "stored_at": self.sources.get(p["number"], {}).get("stored_at", "")} for p in self.store.listing()]
 
     def op_delete_program(self, number) -> None:
         self.store.delete(number)
+        self.sources.pop(number, None)
 
     def op_set_autostart(self, number) -> None:
         self.store.set_autostart(number)
@@ -184,7 +216,12 @@ class ControllerService:
             c.clear_error()
         c.program_state = "idle"
         self.recording = None  # a Single Shot recording lives in RAM
+        if self.wipe_at_power_on:  # Delete EPROM: the factory settings from this power on (DG 2916-2930)
+            self.wipe_at_power_on = False
+            self.op_reset("all")
+            self.name = ""
         self.store.power_on(c)
+        self._set_stack_size(self.store.running)
 
     def op_start(self, number=None, step=False) -> None:
         program = self.temporary if number is None else self.programs.get(number)
@@ -198,8 +235,15 @@ class ControllerService:
         else:
             c.load(program)
             c.start()
+        self._set_stack_size(number)
         if step:  # Prepare Singlestep (DG 2432-2434): loaded, stopped before the first statement
             c.single_step = True
+
+    def _set_stack_size(self, number) -> None:
+        """The program's stack size (Settings → Compiler, DG 3078-3080; error 193 beyond it)."""
+        vm = self.controller.vm
+        if vm is not None and number in self.stack_sizes:
+            vm.stack_size = self.stack_sizes[number]
 
     def op_break(self) -> None:
         self.controller.break_program()
@@ -266,6 +310,22 @@ class ControllerService:
 
     def op_clear_error(self) -> None:
         self.controller.clear_error()
+
+    def op_clear_error_history(self) -> None:
+        """Error History → Clear (DG 3027)."""
+        self.controller.error_history.clear()
+
+    def op_save_memory(self, what) -> None:
+        """Memory ▸ (DG 2908-2946): copy RAM to EPROM. The simulated MCO 305 keeps saved programs and arrays
+        through a power cycle anyway; parameters keep what was last saved (SET values revert, decision K12)."""
+        groups = {"ram": (19, 32, 33), "user": (19,), "arrays": (), "app": (19, 32, 33), "option": (32, 33)}
+        if what not in groups:
+            raise ValueError(f"save_memory {what!r}: choose one of {', '.join(groups)}")
+        if groups[what]:
+            self.controller.params.save(groups[what])
+
+    def op_delete_eprom(self) -> None:
+        self.wipe_at_power_on = True
 
     def op_reset(self, what) -> None:
         """Controller → Reset (DG 2948-2980): "parameters" (global and axis to their defaults), "user"

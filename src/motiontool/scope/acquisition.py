@@ -247,19 +247,30 @@ def list_testsetp(link: Link) -> list[dict]:
     return link.call("list_recordings")
 
 
+def _recorded_start(scope: Scope, exclude: Curve | None = None) -> float | None:
+    """Where the recordings already in the scope start: the earliest first sample of its recorded curves."""
+    starts = [c.raw()[0][0] for c in scope.curves
+              if c is not exclude and c.source.method not in ("derived",) and len(c.buffer)]
+    return min(starts) if starts else None
+
+
 def load_testsetp(scope: Scope, link: Link, index: int, axis: int = 1, label: str = "") -> list[Curve]:
     """Upload recording `index` and add one curve per recorded value, named "Axis: Name [Index]"; the first
-    of the set gets the grey background (DG 5339-5345)."""
+    of the set gets the grey background (DG 5339-5345). A recording added to a scope that holds curves starts
+    where they start, so runs lie over each other as in S23's difference of two runs (decision S15); the
+    controller time of its first sample stays in the curve's Source info."""
     data = link.call("upload_recording", index=index)
     curves = []
     n = len(data["samples"])
-    t = data.get("first_ms", data["start_ms"]) + np.arange(n, dtype=float) * data["interval_ms"]
+    first = data.get("first_ms", data["start_ms"])
+    start = _recorded_start(scope)
+    t = (first if start is None else start) + np.arange(n, dtype=float) * data["interval_ms"]
     values = np.asarray(data["samples"], dtype=float).reshape(n, len(data["indices"]))
     for j, (idx, name) in enumerate(zip(data["indices"], data["names"], strict=True)):
         curve_name = f"{label}{axis}: {name} [{idx}]"
         curve = Curve(curve_name, Source(method="testsetp", signal=str(idx), group="", controller=1,
                                          info={"recording": data["name"], "index": index,
-                                               "interval_ms": data["interval_ms"]}),
+                                               "interval_ms": data["interval_ms"], "recorded_at_ms": first}),
                       unit=default_unit(str(idx)), first_of_set=j == 0)
         curve.buffer.set_capacity(max(n, 1))
         curve.buffer.extend(t, values[:, j])
@@ -279,7 +290,10 @@ def reload_testsetp(scope: Scope, link: Link, curve: Curve) -> None:
     data = link.call("upload_recording", index=same[-1])
     n = len(data["samples"])
     j = [str(i) for i in data["indices"]].index(curve.source.signal)
-    t = data.get("first_ms", data["start_ms"]) + np.arange(n, dtype=float) * data["interval_ms"]
+    first = data.get("first_ms", data["start_ms"])
+    start = curve.raw()[0][0] if len(curve.buffer) else _recorded_start(scope, exclude=curve)
+    t = (first if start is None else start) + np.arange(n, dtype=float) * data["interval_ms"]
+    curve.source.info["recorded_at_ms"] = first
     curve.buffer.set_capacity(max(n, 1))
     curve.buffer.clear()
     curve.buffer.extend(t, np.asarray(data["samples"], dtype=float).reshape(n, -1)[:, j])

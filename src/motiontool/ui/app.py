@@ -50,7 +50,13 @@ def run_gui(open_file: Path | None = None, screenshot: Path | None = None) -> in
         window = MainWindow()
     if open_file is not None:
         try:
-            window.open_file(open_file)
+            if open_file.suffix.lower() == ".m":
+                window.open_file(open_file)
+            else:
+                from motiontool.ui.documents import open_document
+
+                window.new_file()
+                open_document(window, open_file)
         except OSError as exc:
             sys.stderr.write(f"motiontool: cannot open {open_file}: {exc.strerror}\n")
             return 1

@@ -39,14 +39,15 @@ class Connection:
         iface = self.registry.interfaces.get(self.interface_key or "")
         return iface.config.description if iface else self.registry.default.description
 
-    def title_suffix(self) -> str:
+    def title_suffix(self, *, error: bool = True) -> str:
         """" [Controller: 1 FC: /dev/ttyUSB0 9600 baud]" while connected, " [Controller: 1 … — Lost connection]"
-        after a loss (the window stays bound to its controller), "" before the first connection."""
+        after a loss (the window stays bound to its controller), "" before the first connection; with `error`
+        the controller's pending error follows (" — error 171")."""
         bridge = self.w.bridge
         if bridge.connected:
             text = f" [Controller: {bridge.controller_id} {self.interface_description}]"
             status = bridge.last_status
-            if status is not None and status.error:
+            if error and status is not None and status.error:
                 text += f" — error {status.error}"
             return text
         if self.lost_reason:

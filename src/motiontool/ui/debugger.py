@@ -17,6 +17,15 @@ from motiontool.ui.watch import WatchPane
 WATCH_INTERVAL_MS = 250
 
 
+def parse_value(text: str) -> int | float:
+    """A typed value: a DOUBLE with a point or exponent, else a LONG (0x… hexadecimal); ValueError if neither."""
+    text = text.strip()
+    try:
+        return float(text) if any(c in text for c in ".eE") and not text.lower().startswith("0x") else int(text, 0)
+    except ValueError:
+        raise ValueError(f"{text!r} is not a number") from None
+
+
 def format_value(value) -> str:
     if isinstance(value, float):
         text = f"{value:.6f}".rstrip("0")
@@ -31,6 +40,7 @@ class Debugger(QObject):
         self.editor = None
         self.watch = WatchPane(window)
         self.watch.set_reader(self.read_watch)
+        self.watch.set_writer(self.write_watch)
         self._watch_timer = QTimer(self, interval=WATCH_INTERVAL_MS, timeout=self.refresh_watch)
         window.bridge.status_changed.connect(self._status_changed)
 
@@ -80,6 +90,7 @@ class Debugger(QObject):
             self._report(exc)
             return False
         self.editor = editor
+        dev.ran[self.w.bridge.controller_id] = editor
         editor.variable_value = self.read_value
         editor.breakpointsChanged.connect(self._send_breakpoints)
         editor.variableEditRequested.connect(self.change_value)
@@ -153,6 +164,27 @@ class Debugger(QObject):
             return link.call("read_signals", signals=[key])[0]
         return link.call("read_variables", names=[key])[0]
 
+    def write_watch(self, kind: str, key: str, text: str) -> str | None:
+        """A value typed into the Watch pane: a program variable or a parameter (checked against its range
+        first); None when written, else why not."""
+        link = self._link()
+        if link is None:
+            return "not connected"
+        try:
+            if kind == "parameter":
+                from motiontool.paramdb import database
+
+                parameter = database().get(key)
+                link.write_parameter(key, parameter.to_raw(parameter.validate(text)))
+            elif kind == "variable":
+                link.call("write_variable", name=key, value=parse_value(text))
+            else:
+                return f"{key} is read from the controller and cannot be set"
+        except (ValueError, KeyError, LinkError) as exc:
+            self.w.messages.ide(f"Watch: {key}: {exc}")
+            return str(exc)
+        return None
+
     def read_value(self, name: str) -> str | None:
         """The value for the editor's click popup (DG L3440-3444), None when `name` is not a variable."""
         link = self._link()
@@ -172,7 +204,7 @@ class Debugger(QObject):
 
     def write_value(self, name: str, text: str) -> bool:
         try:
-            value = float(text) if any(c in text for c in ".eE") else int(text, 0)
+            value = parse_value(text)
         except ValueError:
             self.w.messages.ide(f"Change value: {text!r} is not a number")
             return False

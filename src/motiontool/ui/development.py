@@ -30,6 +30,7 @@ class Development:
 
     def __init__(self, window) -> None:
         self.w = window
+        self.ran: dict[int, object] = {}  # controller ID → the editor whose program was last started there
 
     # --- connection (ui/connection.py) ------------------------------------------------------------------
     def connect_default(self) -> bool:
@@ -78,6 +79,9 @@ class Development:
         messages = self.w.messages
         for d in outcome.result.diagnostics:
             messages.ide(d.format())
+        xref = self.write_cross_reference(outcome) if isinstance(outcome.result, CompileResult) else None
+        if xref is not None:
+            messages.ide(f"Cross reference: {xref}")
         if outcome.result.ok:
             warnings = len(outcome.result.diagnostics)
             messages.ide("Syntax check: no errors" + (f", {warnings} warning(s)" if warnings else ""))
@@ -85,6 +89,20 @@ class Development:
         messages.ide(f"Syntax check: {len(outcome.result.errors)} error(s)")
         self.goto_first_error(outcome)
         return False
+
+    def write_cross_reference(self, outcome: CheckOutcome) -> Path | None:
+        """Syntax Check's cross reference file `<name>.ad$` (DG 2483; `temp.ad$` for an unsaved program)."""
+        from motiontool.aposs.xref import write_xref, xref_path
+
+        editor = self.w.current_editor()
+        saved = editor.property("path")
+        path = xref_path(Path(saved) if saved else None, Path(self.w._config_dir()))
+        try:
+            write_xref(path, outcome.result, self.w.program_label(editor))
+        except OSError as exc:
+            self.w.messages.ide(f"Cross reference {path}: {exc.strerror or exc}")
+            return None
+        return path
 
     def compile_to_file(self, *, target: Path | None = None) -> bool:
         outcome = self.compile_current()
@@ -144,6 +162,7 @@ class Development:
                 self.w.debugger.watch.set_variables(sorted(symbols.variables), sorted(symbols.arrays.items()))
             link.download(image.to_bytes(), name=Path(image.name).name)
             link.start()
+            self.ran[self.w.bridge.controller_id] = self.w.current_editor()
         except LinkError as exc:
             self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: {exc}")
             return False

@@ -63,6 +63,7 @@ class MainWindow(QMainWindow):
         self.setCentralWidget(self.tabs)
 
         self.messages = MessagesPane(self)
+        self.messages.locationActivated.connect(self._show_location)
         messages_dock = self._dock("Communication", self.messages, Qt.DockWidgetArea.BottomDockWidgetArea)
         self.outline = QListWidget(self)
         self.outline.itemActivated.connect(self._outline_jump)
@@ -88,7 +89,8 @@ class MainWindow(QMainWindow):
         build_menus(self)
         self.bridge.printed.connect(lambda t, text, cid: self.messages.controller(cid, text))
         self.bridge.controller_error.connect(self._controller_error)
-        self.bridge.program_event.connect(lambda t, text, cid: self.messages.controller(cid, text))
+        self.bridge.program_event.connect(self._program_event)
+        self._last_error: dict[int, tuple[int, str, int | None]] = {}  # controller ID → number, text, line
         self.bridge.status_changed.connect(self._status_changed)
         self.bridge.connection_changed.connect(self._connection_changed)
 
@@ -141,10 +143,10 @@ class MainWindow(QMainWindow):
         return editor
 
     def open_dialog(self) -> None:
-        chosen, _ = QFileDialog.getOpenFileName(self, "Open", "", "APOSS programs (*.m);;DPL programs (*.dpl);;"
-                                                                  "All files (*)")
-        if chosen:
-            self.open_file(Path(chosen))
+        """File → Open: programs here, .zbc/.zbo/.zba and Testrun files in their windows (ui/documents.py)."""
+        from motiontool.ui.documents import open_dialog
+
+        open_dialog(self)
 
     def open_sample(self, name: str) -> CodeEditor:
         """File → Sample: a copy of the sample opens as a new, unsaved program (the original stays intact)."""
@@ -286,15 +288,22 @@ class MainWindow(QMainWindow):
         editor = self.current_editor()
         if editor is None:
             return
-        path = editor.property("path") or (editor.property("sample") or "Untitled.m")
         check = check_source if editor.language == "dpl" else compile_source
-        result = check(editor.toPlainText(), path)
+        result = check(editor.toPlainText(), self.program_label(editor))
         self.show_diagnostics(editor, result)
         self._fill_outline(editor)
 
+    def program_label(self, editor: CodeEditor) -> str:
+        """The name the compiler gives the program: its path, else the sample's name, else Untitled.m."""
+        return editor.property("path") or (editor.property("sample") or "Untitled.m")
+
     def show_diagnostics(self, editor: CodeEditor, result: CompileResult) -> None:
-        path = editor.property("path") or (editor.property("sample") or "Untitled.m")
-        editor.set_diagnostics(result.diagnostics, file=path)
+        editor.set_diagnostics(result.diagnostics, file=self.program_label(editor))
+
+    def _show_location(self, file: str, line: int, col: int, controller_id) -> None:
+        from motiontool.ui.documents import show_location
+
+        show_location(self, file, line, col, controller_id)
 
     def _fill_outline(self, editor: CodeEditor) -> None:
         self.outline.clear()
@@ -341,12 +350,21 @@ class MainWindow(QMainWindow):
     # --- controller ------------------------------------------------------------------------------------------
     def _controller_error(self, time_ms: int, number: int, text: str, line, cid: int) -> None:
         where = f" (line {line})" if line else ""
+        self._last_error[cid] = (number, text, line)
         self.messages.controller(cid, f"{text}{where}")
+
+    def _program_event(self, time_ms: int, text: str, cid: int) -> None:
+        """A program that ends with an error says which error and where (as `motiontool run` does)."""
+        if text == "program error" and cid in self._last_error:
+            _number, error, line = self._last_error[cid]
+            text = f"program ended with {error}" + (f" (line {line})" if line else "")
+        self.messages.controller(cid, text)
 
     def _status_changed(self, status) -> None:
         state = {"idle": "idle", "running": "running", "break": "stopped", "ended": "program ended",
                  "error": "program ended with an error"}.get(status.program_state, status.program_state)
-        line = f", line {status.line}" if status.line and status.program_state in ("running", "break") else ""
+        line = f", line {status.line}" if status.line and status.program_state in ("running", "break", "error") \
+            else ""
         error = f" — error {status.error}" if status.error else ""
         self.controller_label.setText(f"{self.bridge.description}: {state}{line}{error}")
         self._update_title()
@@ -364,7 +382,10 @@ class MainWindow(QMainWindow):
     def _update_title(self) -> None:
         editor = self.current_editor()
         name = self.tabs.tabText(self.tabs.currentIndex()) if editor is not None else "APOSS"
-        self.setWindowTitle(f"motiontool — {name}{self.connection.title_suffix()}")
+        # a controller's error belongs to the program that ran there: its tab shows it, not every tab (I8)
+        ran = self.development.ran.get(self.bridge.controller_id)
+        suffix = self.connection.title_suffix(error=ran is None or ran is editor)
+        self.setWindowTitle(f"motiontool — {name}{suffix}")
 
     def about(self) -> None:
         QMessageBox.about(self, "About motiontool",

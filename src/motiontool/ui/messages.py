@@ -1,17 +1,37 @@
 """The Communication pane (ide-spec 1.2, 1.43): IDE messages and the controller's PRINT output, each
-controller line prefixed with its ID ("[01] text"); optional log file with cached writes."""
+controller line prefixed with its ID ("[01] text"); optional log file with cached writes. A click or a
+double-click on a message that names a program line (a compiler message `file:line:col: error: …`, a
+controller error `[01] error 71: … (line 6)`) asks the window to show that line (DG 2479-2483, 2993)."""
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
-from PySide6.QtGui import QFontDatabase, QTextCursor
+from PySide6.QtCore import Qt, Signal
+from PySide6.QtGui import QFontDatabase, QMouseEvent, QTextCursor
 from PySide6.QtWidgets import QPlainTextEdit, QWidget
 
 MAX_LINES = 20_000  # keep the pane light during long runs; the log file keeps everything
+COMPILER_MESSAGE = re.compile(r"^(?P<file>.+?):(?P<line>\d+):(?P<col>\d+): (?:error|warning|note):")
+CONTROLLER_MESSAGE = re.compile(r"^\[(?P<cid>\d+)\] .*\(line (?P<line>\d+)\)\s*$")
+
+
+def message_location(text: str) -> tuple[str, int, int, int | None] | None:
+    """(file, line, column, controller ID) named by a message line, or None. A compiler message names its
+    file; a controller error names the controller (file "")."""
+    m = COMPILER_MESSAGE.match(text)
+    if m:
+        return m["file"], int(m["line"]), int(m["col"]), None
+    m = CONTROLLER_MESSAGE.match(text)
+    if m:
+        return "", int(m["line"]), 1, int(m["cid"])
+    return None
 
 
 class MessagesPane(QPlainTextEdit):
+    locationActivated = Signal(str, int, int, object)  # file ("" = the controller's program), line, column, ID
+
     def __init__(self, parent: QWidget | None = None):
         super().__init__(parent)
         self.setReadOnly(True)
@@ -20,6 +40,24 @@ class MessagesPane(QPlainTextEdit):
         self.setLineWrapMode(QPlainTextEdit.LineWrapMode.NoWrap)
         self._log = None
         self._pending: list[str] = []
+
+    # --- a click on a message with a place ---------------------------------------------------------------
+    def location_at(self, pos) -> tuple[str, int, int, int | None] | None:
+        return message_location(self.cursorForPosition(pos).block().text())
+
+    def mouseReleaseEvent(self, event: QMouseEvent) -> None:  # noqa: N802 (Qt override)
+        super().mouseReleaseEvent(event)
+        if event.button() == Qt.MouseButton.LeftButton and not self.textCursor().hasSelection():
+            self._activate(event)
+
+    def mouseDoubleClickEvent(self, event: QMouseEvent) -> None:  # noqa: N802 (Qt override)
+        super().mouseDoubleClickEvent(event)
+        self._activate(event)
+
+    def _activate(self, event: QMouseEvent) -> None:
+        place = self.location_at(event.position().toPoint())
+        if place is not None:
+            self.locationActivated.emit(*place)
 
     def ide(self, text: str) -> None:
         """A message of the IDE itself (compiler output, connection)."""

@@ -1,8 +1,10 @@
 """The Watch pane and the Watch Add dialog (ide-spec 3.12-3.13, DG L2452-2477).
 
 Entries are program variables (the cross-reference of the debug build), array elements (only the first 250
-elements of an array can be watched, DG L2467), axis process data and parameters.  The pane does not talk to
-the controller itself: a reader `(kind, key) -> value` is set by the debugger.
+elements of an array can be watched, DG L2467), axis process data and parameters.  The Value cell of a
+variable or a parameter can be edited: Enter writes the new value to the controller.  The pane does not talk
+to the controller itself: a reader `(kind, key) -> value` and a writer `(kind, key, text) -> error or None`
+are set by the debugger.
 """
 
 from __future__ import annotations
@@ -76,7 +78,8 @@ class _Table(QTableWidget):
         self.setHorizontalHeaderLabels(["Name", "Value"])
         self.horizontalHeader().setStretchLastSection(True)
         self.verticalHeader().hide()
-        self.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
+        self.setEditTriggers(QAbstractItemView.EditTrigger.DoubleClicked | QAbstractItemView.EditTrigger.EditKeyPressed
+                             | QAbstractItemView.EditTrigger.AnyKeyPressed)
         self.setSelectionBehavior(QAbstractItemView.SelectionBehavior.SelectRows)
 
     def keyPressEvent(self, event: QKeyEvent) -> None:  # noqa: N802 (Qt override)
@@ -95,6 +98,8 @@ class WatchPane(QDockWidget):
         self.arrays: list[tuple[str, int]] = []
         self.controller_kind = "MCO"   # "APC" when the window runs a DPL program on the simulated APC
         self._reader: Callable[[str, str], object] | None = None
+        self._writer: Callable[[str, str, str], str | None] | None = None
+        self._filling = False
         body = QWidget()
         layout = QVBoxLayout(body)
         layout.setContentsMargins(2, 2, 2, 2)
@@ -105,10 +110,29 @@ class WatchPane(QDockWidget):
         layout.addWidget(self.table)
         layout.addWidget(self.hint)
         self.setWidget(body)
+        self.table.itemChanged.connect(self._value_edited)
         self.hide()
 
     def set_reader(self, reader: Callable[[str, str], object]) -> None:
         self._reader = reader
+
+    def set_writer(self, writer: Callable[[str, str, str], str | None]) -> None:
+        self._writer = writer
+
+    def _value_edited(self, item: QTableWidgetItem) -> None:
+        """A value typed into a Value cell goes to the controller; a refusal shows in the cell's tooltip."""
+        if self._filling or item.column() != 1 or self._writer is None:
+            return
+        entry = self.entries[item.row()]
+        refused = self._writer(entry.kind, entry.key, item.text().strip())
+        self._filling = True
+        item.setToolTip(refused or "")
+        self._filling = False
+        self.refresh()
+        if refused:
+            self._filling = True
+            item.setText(f"{item.text()}  ({refused})")
+            self._filling = False
 
     def set_variables(self, variables: list[str], arrays: list[tuple[str, int]]) -> None:
         self.variables, self.arrays = list(variables), list(arrays)
@@ -118,9 +142,18 @@ class WatchPane(QDockWidget):
             return
         self.entries.append(entry)
         row = self.table.rowCount()
+        self._filling = True
         self.table.insertRow(row)
-        self.table.setItem(row, 0, QTableWidgetItem(entry.label))
-        self.table.setItem(row, 1, QTableWidgetItem(""))
+        name = QTableWidgetItem(entry.label)
+        name.setFlags(name.flags() & ~Qt.ItemFlag.ItemIsEditable)
+        value = QTableWidgetItem("")
+        if entry.kind == "signal":  # process data is read by the controller, not set
+            value.setFlags(value.flags() & ~Qt.ItemFlag.ItemIsEditable)
+        else:
+            value.setToolTip("Double-click, type a value, Enter: written to the controller")
+        self.table.setItem(row, 0, name)
+        self.table.setItem(row, 1, value)
+        self._filling = False
         self.hint.setVisible(len(self.entries) > HINT_ENTRIES)
         self.show()
 
@@ -135,12 +168,18 @@ class WatchPane(QDockWidget):
     def refresh(self) -> None:
         if self._reader is None:
             return
-        for row, entry in enumerate(self.entries):
-            try:
-                text = format_watch(self._reader(entry.kind, entry.key), entry.fmt)
-            except Exception as exc:  # noqa: BLE001 - a failed read shows in its row, the others go on
-                text = f"? {exc}"
-            self.table.item(row, 1).setText(text)
+        self._filling = True
+        try:
+            for row, entry in enumerate(self.entries):
+                if self.table.state() == QAbstractItemView.State.EditingState and self.table.currentRow() == row:
+                    continue  # the user is typing a new value here
+                try:
+                    text = format_watch(self._reader(entry.kind, entry.key), entry.fmt)
+                except Exception as exc:  # noqa: BLE001 - a failed read shows in its row, the others go on
+                    text = f"? {exc}"
+                self.table.item(row, 1).setText(text)
+        finally:
+            self._filling = False
 
     def show_add_dialog(self) -> None:
         WatchAddDialog(self).exec()
@@ -154,12 +193,14 @@ class WatchAddDialog(QDialog):
         self.pane = pane
         self.setWindowTitle("Watch Add")
         self.program = QListWidget()
+        self.program.setSelectionMode(QAbstractItemView.SelectionMode.ExtendedSelection)
         for name in pane.variables:
             self.program.addItem(name)
         for name, size in pane.arrays:
             self.program.addItem(f"{name}[{size}]")
         self.system = QTreeWidget()
         self.system.setHeaderHidden(True)
+        self.system.setSelectionMode(QAbstractItemView.SelectionMode.ExtendedSelection)
         groups = ((("APC read parameters", _apc_read_parameters(), "signal"),) if pane.controller_kind == "APC"
                   else (("0x2500 Axis 1 Process Data", AXIS_PROCESS_DATA, "signal"),
                         ("Axis 1 Parameters", PARAMETERS, "parameter")))
@@ -193,8 +234,8 @@ class WatchAddDialog(QDialog):
         layout.addLayout(options)
         layout.addWidget(buttons)
         self.program.currentRowChanged.connect(self._program_row)
-        self.program.itemDoubleClicked.connect(lambda _item: self.add_selected())
-        self.system.itemDoubleClicked.connect(lambda _item, _col: self.add_selected(system=True))
+        self.program.itemDoubleClicked.connect(lambda item: self._add_program([self.program.row(item)]))
+        self.system.itemDoubleClicked.connect(lambda item, _col: self._add_system([item]))
 
     def _program_row(self, row: int) -> None:
         array = row - len(self.pane.variables)
@@ -203,19 +244,23 @@ class WatchAddDialog(QDialog):
         if is_array:  # DG L2467: only the first 250 elements of an array can be watched; DPL counts from 0
             first = 0 if self.pane.controller_kind == "APC" else 1
             self.index.setRange(first, min(self.pane.arrays[array][1], MAX_ARRAY_WATCH) - 1 + first)
-        self.system.clearSelection()
 
-    def add_selected(self, *, system: bool = False) -> None:
+    def add_selected(self) -> None:
+        """Add: everything selected on both sides, e.g. a variable and a parameter together (DG L2458)."""
+        self._add_program(sorted(self.program.row(item) for item in self.program.selectedItems()))
+        self._add_system(self.system.selectedItems())
+
+    def _add_system(self, items: list[QTreeWidgetItem]) -> None:
         fmt = self.format.currentText()
-        item = self.system.currentItem()
-        if (system or self.program.currentRow() < 0) and item is not None and item.parent() is not None:
-            self.pane.add(WatchEntry(item.data(0, Qt.ItemDataRole.UserRole), item.text(0), fmt))
-            return
-        row = self.program.currentRow()
-        if row < 0:
-            return
-        if row < len(self.pane.variables):
-            self.pane.add(WatchEntry("variable", self.pane.variables[row], fmt))
-        else:
-            name = self.pane.arrays[row - len(self.pane.variables)][0]
-            self.pane.add(WatchEntry("variable", f"{name}[{self.index.value()}]", fmt))
+        for item in items:
+            if item is not None and item.parent() is not None:
+                self.pane.add(WatchEntry(item.data(0, Qt.ItemDataRole.UserRole), item.text(0), fmt))
+
+    def _add_program(self, rows: list[int]) -> None:
+        fmt = self.format.currentText()
+        for row in rows:
+            if row < len(self.pane.variables):
+                self.pane.add(WatchEntry("variable", self.pane.variables[row], fmt))
+            else:
+                name = self.pane.arrays[row - len(self.pane.variables)][0]
+                self.pane.add(WatchEntry("variable", f"{name}[{self.index.value()}]", fmt))

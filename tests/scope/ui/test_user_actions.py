@@ -112,3 +112,73 @@ def test_save_without_data_still_writes_a_template(window, qtbot, tmp_path):
         entry.trigger()
     assert [c["data"] for c in json.loads(path.read_text())["curves"]] == [None]
     scope.close()
+
+
+# --- cursors and the mouse (issue 16, 2k) ------------------------------------------------------------------
+def recorded_scope(qtbot):
+    from motiontool.comms.embedded import EmbeddedLink
+    from tests.scope.ui.test_scope_window import run_for
+
+    link = EmbeddedLink()
+    scope = ScopeWindow(link, "free_run", ask=False)
+    qtbot.addWidget(scope)
+    scope.show()
+    qtbot.waitExposed(scope)
+    scope.add_signal_curve("4119", group=GROUP)   # sys_clock: the value is the time
+    click(qtbot, scope, scope.start_action)
+    run_for(scope, link, 1000)
+    click(qtbot, scope, scope.stop_action)
+    return scope
+
+
+def test_cursors_move_with_the_right_button_and_the_left_button_zooms_past_them(qtbot):
+    """ide-spec 6.7-6.8, DG 4743-4787: cursors are moved by right-dragging; a right-drag elsewhere pans; a
+    left-drag zooms a rectangle even when it starts on a cursor (it moved the cursor before)."""
+    from tests.scope.ui.mouse import drag, to_pixel
+
+    scope = recorded_scope(qtbot)
+    click(qtbot, scope, scope.cursor_a)
+    plot, view = scope.chart.plot, scope.chart.view
+    a = scope.scope.cursors[0]
+    (x0, x1), _ = view.viewRange()
+    drag(qtbot, plot, to_pixel(plot, view, a, 0.5), to_pixel(plot, view, a + 0.2 * (x1 - x0), 0.3),
+         Qt.MouseButton.LeftButton)
+    assert scope.scope.cursors[0] == a                          # the left button leaves the cursor
+    (z0, z1), _ = view.viewRange()
+    assert z1 - z0 < 0.5 * (x1 - x0)                            # … and zooms
+    scope.zoom_reset()
+    (x0, x1), _ = view.viewRange()
+    drag(qtbot, plot, to_pixel(plot, view, a, 0.5), to_pixel(plot, view, a + 0.1 * (x1 - x0), 0.5),
+         Qt.MouseButton.RightButton)
+    assert abs(scope.scope.cursors[0] - (a + 0.1 * (x1 - x0))) < 0.01 * (x1 - x0)   # the right button moves it
+    assert view.viewRange()[0] == [x0, x1]                       # … and does not pan
+    moved = scope.scope.cursors[0]
+    drag(qtbot, plot, to_pixel(plot, view, x0 + 0.8 * (x1 - x0), 0.5), to_pixel(plot, view, x0 + 0.6 * (x1 - x0), 0.5),
+         Qt.MouseButton.RightButton)
+    (p0, p1), _ = view.viewRange()
+    assert p0 > x0 + 0.1 * (x1 - x0) and scope.scope.cursors[0] == moved   # elsewhere the right button pans
+
+
+# --- TESTSETP runs lie over each other (issue 16, 2l) --------------------------------------------------------
+def test_a_second_testsetp_run_lands_over_the_first_not_far_beside_it(qtbot):
+    """ide-spec S23: two runs of a TESTSETP program and their difference; the second run used to land at its
+    controller time, so Zoom Reset showed two slivers far apart."""
+    from motiontool.comms.embedded import EmbeddedLink
+    from tests.scope.test_acquisition import TESTSETP, start
+
+    link = EmbeddedLink()
+    start(link, TESTSETP)
+    link.advance(3000)
+    scope = ScopeWindow(link, "testsetp", ask=False)   # opening the TESTSETP scope uploads the recording
+    qtbot.addWidget(scope)
+    scope.show()
+    run_one = scope.scope.curves[0].raw()[0]
+    link.advance(5000)
+    start(link, TESTSETP)
+    link.advance(3000)
+    click(qtbot, scope, scope.load_action)
+    assert len(scope.scope.curves) == 6
+    run_two = scope.scope.curves[3].raw()[0]
+    assert run_two[0] == run_one[0] and run_two[-1] == run_one[-1]
+    (x0, x1), _ = scope.chart.view.viewRange()
+    assert x1 - x0 < 1.1 * (run_one[-1] - run_one[0])   # the chart shows the runs, not the gap between them

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 import pyqtgraph as pg
-from PySide6.QtCore import Qt, Signal
+from PySide6.QtCore import QPointF, Qt, Signal
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import QSplitter, QVBoxLayout, QWidget
 
@@ -19,6 +19,7 @@ from motiontool.scope.curves import Curve, Scope
 
 PYRAMID_MIN = 200_000   # samples from which a curve's min/max pyramid is cached for browsing
 AXIS_WIDTH = 78         # fixed: a new, longer tick label must not make the chart jump (PlotJuggler #1380)
+CURSOR_GRAB_PX = 6      # a right-drag this near a cursor moves it
 
 
 class ScaledAxis(pg.AxisItem):
@@ -52,15 +53,39 @@ class ScaledAxis(pg.AxisItem):
 
 
 class ChartViewBox(pg.ViewBox):
-    """Left-drag zooms a rectangle, right-drag pans (DG 4743-4757)."""
+    """Left-drag zooms a rectangle, right-drag pans (DG 4743-4757); a right-drag that starts on cursor A or B
+    moves that cursor (DG 4781-4787, ide-spec 6.8: "moved by right-dragging")."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.cursor_lines: list[pg.InfiniteLine] = []   # the chart's cursors A and B
+        self.move_cursor = None                           # (cursor index, view x) -> None, set by the chart
+        self._moving: int | None = None
+
+    def cursor_at(self, scene_pos) -> int | None:
+        """The visible cursor within CURSOR_GRAB_PX of scene_pos, if any (the nearer one)."""
+        near = []
+        for i, line in enumerate(self.cursor_lines):
+            if line.isVisible():
+                x = self.mapViewToScene(QPointF(float(line.value()), 0.0)).x()
+                near.append((abs(x - scene_pos.x()), i))
+        best = min(near, default=None)
+        return best[1] if best is not None and best[0] <= CURSOR_GRAB_PX else None
 
     def mouseDragEvent(self, ev, axis=None):  # noqa: N802 - pyqtgraph override
-        if ev.button() == Qt.RightButton:
-            ev.accept()
-            delta = self.mapToView(ev.lastPos()) - self.mapToView(ev.pos())
-            self.translateBy(x=delta.x(), y=delta.y())
-        else:
+        if ev.button() != Qt.RightButton:
             super().mouseDragEvent(ev, axis)
+            return
+        ev.accept()
+        if ev.isStart():
+            self._moving = self.cursor_at(ev.buttonDownScenePos(Qt.RightButton))
+        if self._moving is not None and self.move_cursor is not None:
+            self.move_cursor(self._moving, float(self.mapSceneToView(ev.scenePos()).x()))
+            if ev.isFinish():
+                self._moving = None
+            return
+        delta = self.mapToView(ev.lastPos()) - self.mapToView(ev.pos())
+        self.translateBy(x=delta.x(), y=delta.y())
 
 
 class Chart(QWidget):
@@ -104,13 +129,14 @@ class Chart(QWidget):
         self.plot.scene().sigMouseMoved.connect(self._mouse_moved)
         self.items: dict[str, pg.PlotCurveItem] = {}
         self.cursors = []
-        for i, (name, colour) in enumerate((("A", "#0050d0"), ("B", "#d07000"))):
-            line = pg.InfiniteLine(angle=90, movable=True, pen=pg.mkPen(colour, width=1.5),
+        for name, colour in (("A", "#0050d0"), ("B", "#d07000")):
+            line = pg.InfiniteLine(angle=90, movable=False, pen=pg.mkPen(colour, width=1.5),
                                    label=name, labelOpts={"position": 0.97, "color": colour, "fill": "#ffffffc0"})
             line.setVisible(False)
-            line.sigPositionChanged.connect(lambda ln, *, i=i: self._cursor_dragged(i, ln))
             self.plot.addItem(line, ignoreBounds=True)
             self.cursors.append(line)
+        self.view.cursor_lines = self.cursors
+        self.view.move_cursor = lambda i, x: self.set_cursor(i, x + self.origin())
         self.pause_lines: list[pg.InfiniteLine] = []
         self.zero_marks = pg.ScatterPlotItem(symbol="t2", size=12, pen=None)  # Axis → Display zero mark
         self.plot.addItem(self.zero_marks, ignoreBounds=True)
@@ -283,14 +309,6 @@ class Chart(QWidget):
         self.cursors[i].setValue(t - self.origin())
         self.nav_cursors[i].setValue(t - self.origin())
         self._updating = False
-        self.cursor_moved.emit(i, t)
-
-    def _cursor_dragged(self, i: int, line) -> None:
-        if self._updating or not line.isVisible():
-            return
-        t = float(line.value()) + self.origin()
-        self.scope.cursors[i] = t
-        self.nav_cursors[i].setValue(line.value())
         self.cursor_moved.emit(i, t)
 
     # --- navigation ----------------------------------------------------------------------------------------

@@ -497,6 +497,10 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
         super().mousePressEvent(event)
         self.debug_mouse_press(event)
 
+    def mouseMoveEvent(self, event: QMouseEvent) -> None:  # noqa: N802 (Qt override)
+        super().mouseMoveEvent(event)
+        self.debug_mouse_move(event)
+
     def mouseDoubleClickEvent(self, event: QMouseEvent) -> None:  # noqa: N802 (Qt override)
         if event.button() == Qt.MouseButton.MiddleButton:  # wheel double-click selects the line
             cursor = self.cursorForPosition(event.position().toPoint())

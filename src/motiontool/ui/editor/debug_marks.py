@@ -13,11 +13,33 @@ from collections.abc import Callable, Iterable
 
 from PySide6.QtCore import QPoint, Qt
 from PySide6.QtGui import QColor, QTextBlock, QTextBlockUserData, QTextCursor, QTextFormat
-from PySide6.QtWidgets import QTextEdit, QToolTip
+from PySide6.QtWidgets import QLabel, QTextEdit, QToolTip, QWidget
 
 MAX_BREAKPOINTS = 10  # DG L3414, L3430
 DOT_BLUE, DOT_RED, NEXT_STATEMENT = "#2a6fdb", "#d62828", "#fff36b"
 _WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(\s*\[\s*\d+\s*\])?")
+AWAY_PX = 12  # the value popup closes when the mouse is this far from where it was clicked
+
+
+class ValuePopup(QLabel):
+    """The yellow value popup of a left click on a variable (DG L3440-3444): it stays after the button is
+    released, until the mouse moves away (a QToolTip closed on the release)."""
+
+    def __init__(self, parent: QWidget) -> None:
+        super().__init__(parent, Qt.WindowType.ToolTip)
+        self.setStyleSheet("background: #ffffc0; color: black; border: 1px solid #8a8a5c; padding: 2px 5px;")
+        self.anchor = QPoint()
+
+    def show_at(self, global_pos: QPoint, text: str) -> None:
+        self.setText(text)
+        self.adjustSize()
+        self.anchor = QPoint(global_pos)
+        self.move(global_pos + QPoint(10, 14))
+        self.show()
+
+    def mouse_moved(self, global_pos: QPoint) -> None:
+        if self.isVisible() and (global_pos - self.anchor).manhattanLength() > AWAY_PX:
+            self.hide()
 
 
 class BlockData(QTextBlockUserData):
@@ -43,6 +65,7 @@ class DebugMarksMixin:
     debug_lines: frozenset[int] = frozenset()   # 1-based executable lines of the debug build; empty = no debug
     debug_current: int | None = None            # 1-based line of the next statement to run
     variable_value: Callable[[str], str | None] | None = None
+    value_popup: ValuePopup | None = None
 
     # --- state -----------------------------------------------------------------------------------------
     @property
@@ -58,6 +81,8 @@ class DebugMarksMixin:
 
     def end_debug(self) -> None:
         """End Debug: remove the blue dots and the yellow line; breakpoints stay."""
+        if self.value_popup is not None:
+            self.value_popup.hide()
         self.debug_lines = frozenset()
         self.debug_current = None
         self.variable_value = None
@@ -138,8 +163,14 @@ class DebugMarksMixin:
         value = self.variable_value(name) if name else None
         if value is None:
             return False
-        QToolTip.showText(self.viewport().mapToGlobal(pos), f"{name} = {value}", self.viewport())
+        if self.value_popup is None:
+            self.value_popup = ValuePopup(self.viewport())
+        self.value_popup.show_at(self.viewport().mapToGlobal(pos), f"{name} = {value}")
         return True
+
+    def debug_mouse_move(self, event) -> None:
+        if self.value_popup is not None:
+            self.value_popup.mouse_moved(event.globalPosition().toPoint())
 
     def debug_mouse_press(self, event) -> bool:
         if event.button() == Qt.MouseButton.LeftButton and self.variable_value is not None:

@@ -8,7 +8,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from PySide6.QtCore import QPoint, QPointF, QRect, QSize, Qt
-from PySide6.QtGui import QColor, QFont, QMouseEvent, QPainter, QPaintEvent, QPolygonF, QTextCursor
+from PySide6.QtGui import QColor, QFont, QMouseEvent, QPainter, QPaintEvent, QPen, QPolygonF, QTextCursor
 from PySide6.QtWidgets import QWidget
 
 if TYPE_CHECKING:
@@ -74,15 +74,16 @@ class LineNumberArea(QWidget):
                     painter.setFont(font)
                     painter.setPen(plain_pen)
                 severity = marks.get(number)
-                if severity is not None:
-                    self._diagnostic_mark(painter, y, line_h, QColor(getattr(colors, severity)))
+                if severity is not None:  # a square or triangle, never a dot: dots are the debugger's
+                    mark = self._error_mark if severity == "error" else self._warning_mark
+                    mark(painter, y, line_h, QColor(getattr(colors, severity)))
                     painter.setPen(plain_pen)
                 if editor.has_bookmark(block):
                     self._bookmark_mark(painter, y, line_h, QColor(colors.bookmark))
                     painter.setPen(plain_pen)
                 dot = editor.debug_dot(block)
                 if dot is not None:  # blue: executable statement, red: breakpoint (ide-spec 3.1, 3.5)
-                    self._diagnostic_mark(painter, y, line_h, QColor(dot))
+                    self._dot(painter, y, line_h, QColor(dot))
                     painter.setPen(plain_pen)
             top += height
             block = block.next()
@@ -98,11 +99,39 @@ class LineNumberArea(QWidget):
         painter.drawPolygon(QPolygonF([QPointF(3, mid - half), QPointF(3, mid + half), QPointF(3 + 1.6 * half, mid)]))
 
     @staticmethod
-    def _diagnostic_mark(painter: QPainter, top: int, height: int, color: QColor) -> None:
+    def _dot(painter: QPainter, top: int, height: int, color: QColor) -> None:
+        """The debugger's dots: blue before an executable statement, red on a breakpoint (DG L3364-3418)."""
         size = min(9, height - 4)
         painter.setPen(color.darker(120))
         painter.setBrush(color)
         painter.drawEllipse(QRect(MARK_WIDTH - size + 1, top + (height - size) // 2, size, size))
+
+    @staticmethod
+    def _error_mark(painter: QPainter, top: int, height: int, color: QColor) -> None:
+        """A syntax error: a square with a white cross, so it is not taken for a breakpoint's red dot."""
+        size = min(10, height - 3)
+        box = QRect(MARK_WIDTH - size + 1, top + (height - size) // 2, size, size)
+        painter.setPen(color.darker(130))
+        painter.setBrush(color)
+        painter.drawRect(box)
+        painter.setPen(QPen(QColor("white"), 1.6))
+        inset = box.adjusted(3, 3, -2, -2)
+        painter.drawLine(inset.topLeft(), inset.bottomRight())
+        painter.drawLine(inset.bottomLeft(), inset.topRight())
+
+    @staticmethod
+    def _warning_mark(painter: QPainter, top: int, height: int, color: QColor) -> None:
+        """A warning: a triangle with an exclamation mark."""
+        size = min(11, height - 2)
+        left, bottom = MARK_WIDTH - size + 1, top + (height + size) // 2
+        painter.setPen(color.darker(140))
+        painter.setBrush(color)
+        painter.drawPolygon(QPolygonF([QPointF(left, bottom), QPointF(left + size, bottom),
+                                       QPointF(left + size / 2, bottom - size)]))
+        painter.setPen(QPen(QColor("black"), 1.4))
+        middle = left + size / 2
+        painter.drawLine(QPointF(middle, bottom - size + 4), QPointF(middle, bottom - 4))
+        painter.drawPoint(QPointF(middle, bottom - 2))
 
     # --- line selection with the mouse -----------------------------------------------------------------
     def _block_at(self, y: int) -> int:
