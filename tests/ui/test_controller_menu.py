@@ -77,12 +77,12 @@ def test_programs_save_start_delete(window, qtbot):
     assert dialog.table.rowCount() == 2
     dialog.table.selectRow(1)
     assert dialog.start()
-    qtbot.waitUntil(lambda: "[01] stored" in window.messages.toPlainText(), timeout=5000)
+    qtbot.waitUntil(lambda: "[01] stored" in window.messages.toPlainText(), timeout=15000)
     dialog.table.selectRow(0)
     dialog.autostart(True)
     assert dialog.table.item(0, 2).text() == "⦿" and dialog.table.item(1, 2).text() == ""
     window.bridge.link.call("power_on")  # DG 2707: the Autostart program starts at power on
-    qtbot.waitUntil(lambda: window.messages.toPlainText().count("[01] stored") >= 2, timeout=5000)
+    qtbot.waitUntil(lambda: window.messages.toPlainText().count("[01] stored") >= 2, timeout=15000)
     dialog.autostart(False)
     assert dialog.table.item(0, 2).text() == ""
     dialog.delete()
