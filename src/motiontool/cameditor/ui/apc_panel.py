@@ -189,6 +189,11 @@ class ApcPanel(QWidget):
         self.trace = None
         self.redraw()
 
+    def replace_table(self, table: ApcCamTable) -> None:
+        """A new table from a command (import, calculator, conversion, a segment added or deleted)."""
+        self.set_table(table)
+        self.table_changed.emit()
+
     def _read_widgets(self) -> ApcCamTable:
         segments = []
         for row in range(self.grid.rowCount()):
@@ -226,8 +231,7 @@ class ApcPanel(QWidget):
 
     def add_segment(self) -> None:
         last = self.table.segments[-1]
-        self.set_table(self.table.with_segments(self.table.segments + (ApcSegment(last.master, 0, 0),)))
-        self.table_changed.emit()
+        self.replace_table(self.table.with_segments(self.table.segments + (ApcSegment(last.master, 0, 0),)))
 
     def delete_segment(self) -> None:
         row = self.grid.currentRow()
@@ -243,8 +247,7 @@ class ApcPanel(QWidget):
         except ApcTableError as exc:
             self.show_message(str(exc))
             return
-        self.set_table(table)
-        self.table_changed.emit()
+        self.replace_table(table)
 
     # --- drawing -----------------------------------------------------------------------------------------------
     def master_speed(self) -> float:
@@ -305,11 +308,13 @@ class ApcPanel(QWidget):
             path = Path(chosen)
         try:
             table = import_dpl(path.read_text(encoding="utf-8"), str(path))
-        except (OSError, UnicodeDecodeError, DplImportError) as exc:
+        except DplImportError as exc:  # its messages name the file already
+            self.show_message(str(exc))
+            return False
+        except (OSError, UnicodeDecodeError) as exc:
             self.show_message(f"{path}: {exc}")
             return False
-        self.set_table(table)
-        self.table_changed.emit()
+        self.replace_table(table)
         return True
 
     def trapezoid_dialog(self, *, values: dict | None = None) -> bool:
@@ -328,8 +333,7 @@ class ApcPanel(QWidget):
         except (ValueError, ZeroDivisionError, ApcTableError) as exc:
             self.show_message(f"trapezoid: {exc}")
             return False
-        self.set_table(table)
-        self.table_changed.emit()
+        self.replace_table(table)
         return True
 
     def from_mco(self) -> bool:
@@ -342,8 +346,7 @@ class ApcPanel(QWidget):
         except ValueError as exc:
             self.show_message(f"From MCO curve: {exc}")
             return False
-        self.set_table(result.table)
-        self.table_changed.emit()
+        self.replace_table(result.table)
         self.show_message(f"from '{curve.name}': {len(result.table.segments)} segments, largest position error "
                           f"{result.max_error:.2f} counts", error=False)
         return True
