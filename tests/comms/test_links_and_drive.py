@@ -224,6 +224,32 @@ def test_a_remote_link_reports_a_loss_once_and_comes_back_by_itself():
     link.close()
 
 
+def test_events_after_a_drive_restart_are_all_published():
+    """A restarted drive numbers its events from 1 again (a new epoch): the master says so once and publishes every
+    event of the new drive — also when the new drive has produced more events than the master had seen."""
+    drives = [VirtualDrive([1], clock="virtual")]
+    link = RemoteLink(lambda message: drives[0].node(1).handle_message(message), "restarting", poll_interval_s=60)
+    seen = []
+    link.subscribe(lambda e: seen.append(e.text) if e.kind in ("print", "message") else None)
+    try:
+        link.download(image('PRINT "old 1"\nPRINT "old 2"\n').to_bytes())
+        link.start()
+        link.advance(20)
+        link.flush_events()
+        assert seen == ["old 1", "old 2"]
+        for count in (2, 9):                  # fewer events than the master saw before, then more
+            drives[0] = VirtualDrive([1], clock="virtual")           # a power cycle
+            link.download(image("".join(f'PRINT "new {i}"\n' for i in range(count))).to_bytes())
+            link.start()
+            link.advance(20)
+            seen.clear()
+            link.flush_events()
+            assert seen == ["the controller restarted: its event numbers begin again",
+                            *(f"new {i}" for i in range(count))]
+    finally:
+        link.close()
+
+
 def test_drive_command_refuses_bad_set_ups_naming_them(tmp_path):
     import io
 

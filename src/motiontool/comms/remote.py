@@ -96,9 +96,11 @@ class RemoteLink(Link):
     def poll_events(self) -> bool:
         """Fetch one batch of events and publish them; True when more are waiting."""
         with self._events_lock:
-            value = self.call("events", after=self._last_event)
-            if self._epoch is not None and value.get("epoch") != self._epoch and self._last_event:
+            # the epoch names the numbering `after` belongs to: a restarted controller answers from its first event
+            value = self.call("events", after=self._last_event, epoch=self._epoch)
+            if self._epoch is not None and value.get("epoch") != self._epoch:
                 self._publish(LinkEvent("message", 0, "the controller restarted: its event numbers begin again"))
+                self._last_event = 0
             self._epoch = value.get("epoch")
             if value.get("lost"):
                 self._publish(LinkEvent("message", 0, f"{value['lost']} controller events were lost "

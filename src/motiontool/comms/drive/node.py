@@ -2,9 +2,11 @@
 numbers, and the answers to recent requests kept so that a repeated request is answered, not applied twice.
 
 Events: a wire master cannot be called back, so it polls. Every event gets the next sequence number; the wire-only
-request ``events {after, max}`` returns the events after ``after`` (the last one the master saw) and forgets the
-ones up to it. When more than `EVENT_LIMIT` are waiting the oldest are dropped and the next answer says how many
-(``lost``), so a master that stopped polling costs bounded memory (docs/link-protocol.md "Events on the wire").
+request ``events {after, max, epoch}`` returns the events after ``after`` (the last one the master saw) and forgets
+the ones up to it. ``after`` counts in the numbering of ``epoch`` (the one the master saw last): the master of a
+drive before its restart gets the new drive's events from the first. When more than `EVENT_LIMIT` are waiting the
+oldest are dropped and the next answer says how many (``lost``), so a master that stopped polling costs bounded
+memory (docs/link-protocol.md "Events on the wire").
 """
 
 from __future__ import annotations
@@ -77,8 +79,11 @@ class DriveNode:
         op = request.op
         try:
             if op == "events":
-                return Response(request.id, True, self.events.after(int(request.args.get("after", 0)),
-                                                                     int(request.args.get("max", EVENTS_PER_ANSWER))))
+                args = request.args
+                after = int(args.get("after", 0))
+                if args.get("epoch") not in (None, self.events.epoch):  # numbers of the drive before a restart
+                    after = 0
+                return Response(request.id, True, self.events.after(after, int(args.get("max", EVENTS_PER_ANSWER))))
             if op == "advance":
                 self.drive.advance(int(request.args.get("ms", 0)))
                 return Response(request.id, True, None)
