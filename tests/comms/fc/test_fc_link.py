@@ -179,3 +179,77 @@ def test_a_slow_line_is_polled_less_often(served):
         assert link.bus.description.endswith("9600 baud") == serial
     finally:
         link.close()
+
+
+class MeddlingLine:
+    """A pseudo-terminal with the virtual drive's FC slave on its far side, where `meddle(request)` returns bytes
+    the line delivers before the slave's answer: an echo of the request, a late answer to an earlier telegram."""
+
+    def __init__(self, meddle):
+        import tty
+
+        from motiontool.comms.fc.server import FcSlave
+
+        self.drive = VirtualDrive([1], clock="virtual")
+        self.slave = FcSlave(self.drive)
+        self.meddle = meddle
+        self.master, self.slave_fd = os.openpty()
+        tty.setraw(self.slave_fd)
+        self.path = os.ttyname(self.slave_fd)
+        self.stop = threading.Event()
+        self.thread = threading.Thread(target=self._serve, daemon=True)
+        self.thread.start()
+
+    def _serve(self):
+        import select
+
+        reader = fc.TelegramReader()
+        while not self.stop.is_set():
+            if not select.select([self.master], [], [], 0.05)[0]:
+                continue
+            for t in reader.feed(os.read(self.master, 4096)):
+                if isinstance(t, fc.Telegram):
+                    answer = self.slave.on_telegram(t)
+                    os.write(self.master, self.meddle(t) + (fc.encode(answer) if answer else b""))
+
+    def close(self):
+        self.stop.set()
+        self.thread.join()
+        self.slave.close()
+        os.close(self.master)
+        os.close(self.slave_fd)
+
+
+def test_a_line_that_echoes_the_requests_reads_and_writes_right():
+    """A 2-wire RS-485 adapter hears its own telegrams: each request comes back before the drive's answer. An echo
+    is not an answer — a read echoed as AK 1 would read 0, a word write echoed as AK 2 would "verify" a write the
+    drive never answered."""
+    line = MeddlingLine(fc.encode)
+    link = FcLink(FcBus(BusSettings(line.path, timeout_s=0.1)), 1)
+    try:
+        assert link.read_parameter("KPROP") == 30
+        link.write_parameter("POSERRTIME", 500)                     # Int16: a word write (AK 2)
+        link.write_parameter("KPROP", 55)                           # a double word (AK 3)
+        controller = line.drive.node(1).service.controller
+        assert (controller.params.get(3260), link.read_parameter("POSERRTIME")) == (55, 500)
+        assert link.status().program_state == "idle"                # the extension too
+        assert link.bus.stats.repeats == 0
+    finally:
+        link.close()
+        line.close()
+
+
+def test_a_late_refusal_of_a_parameter_is_not_the_drive_refusing_the_extension():
+    """A refusal (AK 7) that arrives late, after its request was given up, names its parameter: during an extension
+    exchange it is a stray answer, not the drive saying it has no extension (which refuses PNU 4095)."""
+    def late_refusal(request):
+        return fc.encode(fc.parameter(request.adr, fc.AK_REFUSED, 3260, 2)) if request.text is not None else b""
+
+    line = MeddlingLine(late_refusal)
+    link = FcLink(FcBus(BusSettings(line.path, timeout_s=0.1)), 1)
+    try:
+        assert link.identify()["node"] == 1
+        assert link.status().program_state == "idle"
+    finally:
+        link.close()
+        line.close()

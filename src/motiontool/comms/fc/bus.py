@@ -4,6 +4,8 @@
 one (BCC, length, parity errors the UART reports as garbage) or one that does not echo the request (another
 address, another PNU or sequence number — a late answer to an earlier try) is a failed try: the same telegram is
 sent again after a back-off (10 ms, doubling), and after `retries` repeats the bus reports `ConnectionLost`.
+A telegram identical to the request is the line's echo of it (a 2-wire RS-485 adapter hears what it sends) and
+is passed over: an answer differs from its request (another AK, or the drive's status word in PCD1).
 Repeating the same telegram is safe: parameter writes are idempotent and extension frames are deduplicated by the
 slave (comms/chunks.py).
 
@@ -59,6 +61,7 @@ class BusStatistics:
     timeouts: int = 0
     damaged: int = 0
     mismatched: int = 0
+    echoes: int = 0
     problems: list[str] = field(default_factory=list)
 
     def note(self, problem: str) -> None:
@@ -173,6 +176,9 @@ class FcBus:
                     self.stats.damaged += 1
                     problem = f"damaged answer: {item}"
                     deadline = min(deadline, time.monotonic() + SETTLE_S)  # the rest of it is garbage too
+                    continue
+                if item == request:          # our own telegram, echoed by the line
+                    self.stats.echoes += 1
                     continue
                 if item.adr != request.adr or (matches is not None and not matches(item)):
                     self.stats.mismatched += 1

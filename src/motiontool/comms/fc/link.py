@@ -19,7 +19,7 @@ from typing import Any
 from motiontool.comms.chunks import MasterChannel
 from motiontool.comms.faults import FAULT_OPTIONS, FaultyPort, faults_from_options
 from motiontool.comms.fc.bus import DEFAULT_BAUD, PARITIES, BusSettings, FcBus
-from motiontool.comms.fc.extension import MAX_CHUNK, frame_telegram, is_frame, telegram_frame
+from motiontool.comms.fc.extension import EXTENSION_PNU, MAX_CHUNK, frame_telegram, is_frame, telegram_frame
 from motiontool.comms.fc.telegram import (
     AK_NONE,
     AK_READ,
@@ -40,6 +40,7 @@ from motiontool.comms.remote import POLL_INTERVAL_S, RemoteLink
 from motiontool.paramdb import Parameter, ParameterError, database
 
 WORD_TYPES = ("Uint8", "Uint16", "Int8", "Int16")
+PARAMETER_ANSWERS = (AK_VALUE_WORD, AK_VALUE_DWORD, AK_REFUSED)   # what a slave answers to a read or a write
 OPTIONS = {"baud", "parity", "stopbits", "timeout", "retries", "format", "poll"} | FAULT_OPTIONS
 
 
@@ -62,8 +63,9 @@ class FcLink(RemoteLink):
 
     # --- the extension ---------------------------------------------------------------------------------
     def _transfer(self, frame):
-        reply = self.bus.transact(frame_telegram(self.adr, frame),
-                                  lambda t: (is_frame(t) and t.ind == frame.seq) or t.ak == AK_REFUSED)
+        # a refusal of the extension names its PNU; one of another parameter is a late answer to something else
+        reply = self.bus.transact(frame_telegram(self.adr, frame), lambda t: (is_frame(t) and t.ind == frame.seq) or (
+            t.text is None and t.ak == AK_REFUSED and t.pnu == EXTENSION_PNU))
         if not is_frame(reply):
             raise LinkError(f"controller {self.address} on {self.bus.description} offers parameter access only "
                             f"(it refused the motiontool extension: {fault_text(reply.pwe & 0xFFFF)})")
@@ -81,8 +83,8 @@ class FcLink(RemoteLink):
         if self._closed.is_set():
             raise ConnectionLost("the link is closed")
         try:
-            reply = self.bus.transact(parameter(self.adr, ak, p.index, value),
-                                      lambda t: t.text is None and t.pke is not None and t.pnu == p.index)
+            reply = self.bus.transact(parameter(self.adr, ak, p.index, value), lambda t: t.text is None and
+                                      t.pke is not None and t.pnu == p.index and t.ak in PARAMETER_ANSWERS)
         except ConnectionLost as exc:
             self._set_connection(lost=True, text=f"Lost connection: {exc}")
             raise
