@@ -182,8 +182,9 @@ def test_a_slow_line_is_polled_less_often(served):
 
 
 class MeddlingLine:
-    """A pseudo-terminal with the virtual drive's FC slave on its far side, where `meddle(request)` returns bytes
-    the line delivers before the slave's answer: an echo of the request, a late answer to an earlier telegram."""
+    """A pseudo-terminal with the virtual drive's FC slave on its far side, where `meddle(request, answer)` returns
+    what the line delivers instead of the slave's answer: an echo of the request before it, a late answer to an
+    earlier telegram, nothing (a lost telegram)."""
 
     def __init__(self, meddle):
         import tty
@@ -210,7 +211,7 @@ class MeddlingLine:
             for t in reader.feed(os.read(self.master, 4096)):
                 if isinstance(t, fc.Telegram):
                     answer = self.slave.on_telegram(t)
-                    os.write(self.master, self.meddle(t) + (fc.encode(answer) if answer else b""))
+                    os.write(self.master, self.meddle(t, fc.encode(answer) if answer else b""))
 
     def close(self):
         self.stop.set()
@@ -224,7 +225,7 @@ def test_a_line_that_echoes_the_requests_reads_and_writes_right():
     """A 2-wire RS-485 adapter hears its own telegrams: each request comes back before the drive's answer. An echo
     is not an answer — a read echoed as AK 1 would read 0, a word write echoed as AK 2 would "verify" a write the
     drive never answered."""
-    line = MeddlingLine(fc.encode)
+    line = MeddlingLine(lambda request, answer: fc.encode(request) + answer)
     link = FcLink(FcBus(BusSettings(line.path, timeout_s=0.1)), 1)
     try:
         assert link.read_parameter("KPROP") == 30
@@ -242,8 +243,9 @@ def test_a_line_that_echoes_the_requests_reads_and_writes_right():
 def test_a_late_refusal_of_a_parameter_is_not_the_drive_refusing_the_extension():
     """A refusal (AK 7) that arrives late, after its request was given up, names its parameter: during an extension
     exchange it is a stray answer, not the drive saying it has no extension (which refuses PNU 4095)."""
-    def late_refusal(request):
-        return fc.encode(fc.parameter(request.adr, fc.AK_REFUSED, 3260, 2)) if request.text is not None else b""
+    def late_refusal(request, answer):
+        late = fc.encode(fc.parameter(request.adr, fc.AK_REFUSED, 3260, 2)) if request.text is not None else b""
+        return late + answer
 
     line = MeddlingLine(late_refusal)
     link = FcLink(FcBus(BusSettings(line.path, timeout_s=0.1)), 1)
@@ -251,5 +253,36 @@ def test_a_late_refusal_of_a_parameter_is_not_the_drive_refusing_the_extension()
         assert link.identify()["node"] == 1
         assert link.status().program_state == "idle"
     finally:
+        link.close()
+        line.close()
+
+
+def test_a_scan_leaves_the_retries_of_the_links_on_its_bus_alone():
+    """Open Interface scans a port other windows' controllers may be using: each probe gets one short try, while a
+    link's own request on the same bus keeps its repeats (here the line loses every first try)."""
+    seen = set()
+
+    def first_try_lost(request, answer):
+        raw = fc.encode(request)
+        if raw in seen:
+            return answer
+        seen.add(raw)
+        return b""
+
+    line = MeddlingLine(first_try_lost)
+    link = FcLink(FcBus(BusSettings(line.path, timeout_s=0.05)), 1)
+    found = []
+    scanning = threading.Thread(target=lambda: found.extend(scan(link.bus, range(2, 40))))
+    try:
+        scanning.start()
+        import time
+
+        time.sleep(0.3)
+        assert scanning.is_alive()                     # the scan waits for silent addresses 2..39
+        assert link.read_parameter("KPROP") == 30      # one repeat: the link's retries hold during the scan
+        scanning.join()
+        assert found == [] and (link.bus.settings.retries, link.bus.settings.timeout_s) == (3, 0.05)
+    finally:
+        scanning.join()
         link.close()
         line.close()

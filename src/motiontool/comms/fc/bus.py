@@ -122,17 +122,22 @@ class FcBus:
         return f"FC: {s.url}{line}"
 
     # --- telegrams ------------------------------------------------------------------------------------
-    def transact(self, telegram: Telegram, matches: Callable[[Telegram], bool] | None = None) -> Telegram | None:
-        """Send a telegram and return the answer that echoes it (None for a broadcast: nobody answers)."""
+    def transact(self, telegram: Telegram, matches: Callable[[Telegram], bool] | None = None, *,
+                 retries: int | None = None, timeout_s: float | None = None) -> Telegram | None:
+        """Send a telegram and return the answer that echoes it (None for a broadcast: nobody answers).
+        `retries` and `timeout_s` replace the settings' for this telegram only (a scan's short probes): the
+        settings are shared by every link on the bus."""
         raw = encode(telegram)
         address, broadcast, _ = decode_address(telegram.adr)
         reply_bytes = MAX_TEXT + 10 if telegram.text is not None else LGE_PARAMETER + 2
-        wait = self.settings.timeout_s + wire_time(len(raw) + reply_bytes, self.settings.baud)
+        retries = self.settings.retries if retries is None else retries
+        timeout_s = self.settings.timeout_s if timeout_s is None else timeout_s
+        wait = timeout_s + wire_time(len(raw) + reply_bytes, self.settings.baud)
         problem = ""
         with self.lock:
             if self.closed:
                 raise ConnectionLost(f"{self.description} is closed")
-            for attempt in range(self.settings.retries + 1):
+            for attempt in range(retries + 1):
                 if attempt:
                     self.stats.repeats += 1
                     time.sleep(self.settings.backoff_s * 2 ** (attempt - 1))
@@ -150,7 +155,7 @@ class FcBus:
                 problem = reply
                 self.stats.note(problem)
         raise ConnectionLost(f"no valid answer from address {address} on {self.description} after "
-                             f"{self.settings.retries + 1} tries ({problem})")
+                             f"{retries + 1} tries ({problem})")
 
     def _write(self, raw: bytes) -> None:
         self.port.reset_input_buffer()

@@ -183,20 +183,16 @@ def default_poll_interval(bus: FcBus) -> float:
 def scan(bus: FcBus, addresses, fmt: int | None = None) -> list[int]:
     """The addresses in `addresses` that answer (a "no command" telegram each, one try, short timeout)."""
     found = []
-    saved = bus.settings.retries, bus.settings.timeout_s
-    bus.settings.retries, bus.settings.timeout_s = 0, min(bus.settings.timeout_s, 0.05)
-    try:
-        for address in addresses:
-            adr = encode_address(address, fmt=fmt)
-            try:
-                bus.transact(parameter(adr, AK_NONE, 0))
-            except ConnectionLost:
-                if bus.closed:
-                    raise
-                continue
-            found.append(address)
-    finally:
-        bus.settings.retries, bus.settings.timeout_s = saved
+    timeout_s = min(bus.settings.timeout_s, 0.05)
+    for address in addresses:
+        adr = encode_address(address, fmt=fmt)
+        try:
+            bus.transact(parameter(adr, AK_NONE, 0), retries=0, timeout_s=timeout_s)
+        except ConnectionLost:
+            if bus.closed:
+                raise
+            continue
+        found.append(address)
     return found
 
 
