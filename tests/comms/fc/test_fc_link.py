@@ -97,6 +97,25 @@ def test_two_links_share_one_port_and_scan_finds_the_nodes(served):
     assert a.bus.closed
 
 
+def test_closing_a_link_twice_leaves_the_shared_port_to_the_others(served):
+    drive, url = served
+    a, b = open_link(f"{url}#1"), open_link(f"{url}#2")
+    try:
+        a.close()
+        a.close()                                     # a window and its registry may both close it
+        assert not b.bus.closed and b.read_parameter("KPROP") == 30
+    finally:
+        b.close()
+    assert b.bus.closed
+
+
+def test_a_bad_option_leaves_no_port_open(served):
+    drive, url = served
+    with pytest.raises(LinkError, match="option poll='soon' is not valid"):
+        open_link(f"{url}#1,poll=soon")
+    assert not [bus for bus in FcBus._open.values() if bus.settings.url == url.removeprefix("fc:")]
+
+
 def test_broadcast_write_reaches_every_node_and_nobody_answers(served):
     drive, url = served
     link = open_link(f"{url}#1")

@@ -115,8 +115,10 @@ class FcLink(RemoteLink):
             raise LinkError(f"parameter {p.label}: wrote {raw}, the drive answered {echoed} (write not verified)")
 
     def close(self) -> None:
+        released = self._closed.is_set()
         super().close()
-        self.bus.release()
+        if not released:          # once: the bus counts its links, a second release would close it under others
+            self.bus.release()
 
 
 def _parameter(key) -> Parameter:
@@ -170,8 +172,9 @@ def open_fc(spec: LinkSpec) -> FcLink:
     faults = faults_from_options(spec)
     if faults.active:  # a spoilt line is a different bus from the clean one on the same port
         settings.faults = faults
+    poll = spec.option("poll", None, float)   # every option is checked before the port is opened
     bus = FcBus.open(settings, (lambda port: FaultyPort(port, faults)) if faults.active else None)
-    return FcLink(bus, address, fmt, spec.option("poll", default_poll_interval(bus), float))
+    return FcLink(bus, address, fmt, default_poll_interval(bus) if poll is None else poll)
 
 
 def default_poll_interval(bus: FcBus) -> float:
