@@ -8,6 +8,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from motiontool.comms.fc import telegram as fc
+from motiontool.comms.fc.values import from_pwe, to_pwe
+from motiontool.paramdb import database
 
 
 def h(text: str) -> bytes:
@@ -143,3 +145,13 @@ def test_parameter_telegrams_round_trip(ak, pnu, ind, pwe, address, text):
     t = fc.text_telegram(adr, 15, pnu, ind, pwe, b"t" * (ak % 5)) if text else \
         fc.parameter(adr, ak if ak != 15 else 1, pnu, pwe, ind, (ind, pnu))
     assert fc.decode(fc.encode(t)) == t
+
+
+@given(st.sampled_from(list(database())), st.data())
+def test_a_parameter_value_survives_its_pwe(p, data):
+    """docs/protocols/fc.md "Parameters": words for the word types when the value fits, double words otherwise, two's
+    complement for the Int types — whatever a slave sends, the master reads back the same value."""
+    signed = p.data_type.startswith("Int")
+    value = data.draw(st.integers(-2**31, 2**31 - 1) if signed else st.integers(0, 2**32 - 1))
+    ak, pwe = to_pwe(p, value)
+    assert from_pwe(p, pwe, word=ak == fc.AK_VALUE_WORD) == value

@@ -34,12 +34,12 @@ from motiontool.comms.fc.telegram import (
     parameter,
     wire_time,
 )
+from motiontool.comms.fc.values import from_pwe, to_pwe
 from motiontool.comms.links import LinkSpec, register_link_scheme
 from motiontool.comms.protocol import ConnectionLost, LinkError, Request
 from motiontool.comms.remote import POLL_INTERVAL_S, RemoteLink
 from motiontool.paramdb import Parameter, ParameterError, database
 
-WORD_TYPES = ("Uint8", "Uint16", "Int8", "Int16")
 PARAMETER_ANSWERS = (AK_VALUE_WORD, AK_VALUE_DWORD, AK_REFUSED)   # what a slave answers to a read or a write
 OPTIONS = {"baud", "parity", "stopbits", "timeout", "retries", "format", "poll"} | FAULT_OPTIONS
 
@@ -98,7 +98,7 @@ class FcLink(RemoteLink):
 
     def _read(self, p: Parameter) -> int:
         reply = self._transact_parameter(p, AK_READ)
-        return _from_pwe(p, reply.pwe, reply.ak)
+        return from_pwe(p, reply.pwe, word=reply.ak == AK_VALUE_WORD)
 
     def _write(self, p: Parameter, value) -> None:
         if p.read_only:
@@ -110,7 +110,7 @@ class FcLink(RemoteLink):
             raise LinkError(f"error 183: {exc}", 183) from None
         word = to_pwe(p, raw)[0] == AK_VALUE_WORD
         reply = self._transact_parameter(p, AK_WRITE_WORD if word else AK_WRITE_DWORD, raw)
-        echoed = _from_pwe(p, reply.pwe, reply.ak)
+        echoed = from_pwe(p, reply.pwe, word=reply.ak == AK_VALUE_WORD)
         if echoed != raw:
             raise LinkError(f"parameter {p.label}: wrote {raw}, the drive answered {echoed} (write not verified)")
 
@@ -126,26 +126,6 @@ def _parameter(key) -> Parameter:
         return database().get(key)
     except ParameterError:
         raise LinkError(f"error 112: Unknown param. (parameter {key})", 112) from None
-
-
-def _from_pwe(p: Parameter, pwe: int, ak: int) -> int:
-    """A PWE as the parameter's value: a word answer (AK 1) holds 16 bits, a double word (AK 2) 32; signed types
-    are two's complement."""
-    bits = 32 if ak == AK_VALUE_DWORD else 16
-    value = pwe & ((1 << bits) - 1)
-    if p.data_type.startswith("Int") and value >> (bits - 1):
-        value -= 1 << bits
-    return value
-
-
-def to_pwe(p: Parameter, value: int) -> tuple[int, int]:
-    """(AK of the answer, PWE) for a parameter's value as a drive sends it: a word for the word data types, a
-    double word for the others — and for a word parameter whose value does not fit 16 bits (a program may SET any
-    value, DG 7782-7795)."""
-    signed = p.data_type.startswith("Int")
-    if p.data_type in WORD_TYPES and (-0x8000 <= value <= 0x7FFF if signed else 0 <= value <= 0xFFFF):
-        return AK_VALUE_WORD, value & 0xFFFF
-    return AK_VALUE_DWORD, value & 0xFFFFFFFF
 
 
 # --- opening and scanning ------------------------------------------------------------------------------------

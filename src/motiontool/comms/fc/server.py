@@ -23,7 +23,6 @@ from collections.abc import Callable
 
 from motiontool.comms.chunks import SlaveChannel
 from motiontool.comms.fc.extension import MAX_CHUNK, frame_telegram, is_frame, telegram_frame
-from motiontool.comms.fc.link import to_pwe
 from motiontool.comms.fc.telegram import (
     AK_NONE,
     AK_READ,
@@ -40,6 +39,7 @@ from motiontool.comms.fc.telegram import (
     parameter,
     wire_time,
 )
+from motiontool.comms.fc.values import from_pwe, to_pwe
 from motiontool.comms.links import LinkSpec
 from motiontool.comms.protocol import LinkError
 from motiontool.paramdb import ParameterError, database
@@ -122,10 +122,7 @@ class FcSlave:
         try:
             with self.drive.lock:
                 if t.ak in WRITES:
-                    value = t.pwe & (0xFFFF if t.ak in (AK_WRITE_WORD, AK_WRITE_WORD_EEPROM) else 0xFFFFFFFF)
-                    if p.data_type.startswith("Int"):
-                        bits = 16 if t.ak in (AK_WRITE_WORD, AK_WRITE_WORD_EEPROM) else 32
-                        value -= (value >> (bits - 1)) << bits
+                    value = from_pwe(p, t.pwe, word=t.ak in (AK_WRITE_WORD, AK_WRITE_WORD_EEPROM))
                     if p.read_only:
                         return parameter(t.adr, AK_REFUSED, t.pnu, 1, t.ind, pcd)
                     service.controller.params.set(p.index, value, source="link")
