@@ -116,6 +116,20 @@ def test_a_bad_option_leaves_no_port_open(served):
     assert not [bus for bus in FcBus._open.values() if bus.settings.url == url.removeprefix("fc:")]
 
 
+def test_a_pseudo_terminal_opens_again_after_it_was_closed():
+    """Open Interface scans the port and closes it, then the controller's link opens it again. A Linux pty has no
+    parity bit: it keeps PARENB off, so the second open's settings change nothing and the pty refused them."""
+    drive = VirtualDrive([1], clock="virtual")
+    listener = open_listener("fc:pty", drive)
+    try:
+        for _ in range(3):
+            link = open_link(f"{listener.url}#1")
+            assert link.read_parameter("KPROP") == 30
+            link.close()
+    finally:
+        listener.close()
+
+
 def test_broadcast_write_reaches_every_node_and_nobody_answers(served):
     drive, url = served
     link = open_link(f"{url}#1")

@@ -16,6 +16,7 @@ out the open bus of a URL with a reference count; the bus closes when its last l
 from __future__ import annotations
 
 import contextlib
+import os
 import threading
 import time
 from collections.abc import Callable
@@ -195,9 +196,26 @@ class FcBus:
 def _open_port(settings: BusSettings):
     import serial
 
+    def open_with(parity: str):
+        return serial.serial_for_url(settings.url, baudrate=settings.baud, bytesize=serial.EIGHTBITS, parity=parity,
+                                     stopbits=settings.stopbits, timeout=READ_TIMEOUT_S, write_timeout=2.0)
+
     try:
-        return serial.serial_for_url(settings.url, baudrate=settings.baud, bytesize=serial.EIGHTBITS,
-                                     parity=settings.parity, stopbits=settings.stopbits, timeout=READ_TIMEOUT_S,
-                                     write_timeout=2.0)
-    except (OSError, ValueError) as exc:
+        try:
+            return open_with(settings.parity)
+        except _TERMIOS_ERRORS:
+            # A pseudo-terminal (the virtual drive's fc:pty) has no parity bit: it keeps PARENB off, so opening it
+            # again asks it to change nothing else and it refuses (EINVAL). Parity means nothing there.
+            if settings.parity == "N" or not os.path.realpath(settings.url).startswith("/dev/pts/"):
+                raise
+            return open_with("N")
+    except (OSError, ValueError, *_TERMIOS_ERRORS) as exc:
         raise LinkError(f"cannot open {settings.url}: {exc}") from None
+
+
+try:  # the settings of a POSIX port are refused with termios.error (not an OSError)
+    import termios
+
+    _TERMIOS_ERRORS: tuple[type[Exception], ...] = (termios.error,)
+except ImportError:  # Windows
+    _TERMIOS_ERRORS = ()
