@@ -268,3 +268,41 @@ def test_drive_command_refuses_bad_set_ups_naming_them(tmp_path):
         out, err = io.StringIO(), io.StringIO()
         assert run_drive(options, out, err) == 1
         assert expected in err.getvalue() and out.getvalue() == ""
+
+
+def test_every_link_takes_requests_from_several_threads():
+    """The IDE asks for the status on a worker thread while its window sends commands and a wire link polls events:
+    request ids stay unique per link and every answer belongs to its request, on every kind of link."""
+    from motiontool.comms.bus import EmbeddedBus
+
+    class Recording(EmbeddedLink):
+        def __init__(self):
+            super().__init__()
+            self.ids = []
+
+        def request(self, request):
+            self.ids.append(request.id)
+            return super().request(request)
+
+    recording = Recording()
+    bus = EmbeddedBus([1, 2])
+    for link in (recording, bus.link(2)):
+        errors = []
+
+        def hammer(k, link=link, errors=errors):
+            try:
+                for i in range(200):
+                    link.write_parameter(f"19-0{k}", i)
+                    link.advance(1)
+                    assert link.read_parameter(f"19-0{k}") == i
+                    link.status()
+            except Exception as exc:  # noqa: BLE001
+                errors.append(exc)
+
+        threads = [threading.Thread(target=hammer, args=(k,)) for k in range(4)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        assert errors == []
+    assert len(recording.ids) == len(set(recording.ids)) == 4 * 200 * 4

@@ -7,6 +7,7 @@ line, sample by sample, so every node's CTSyncGetSlaveReferences sees the master
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Iterable
 
 from motiontool.apc.ctsync import CTSyncLine
@@ -18,6 +19,7 @@ from motiontool.comms.bus import NodeLink
 class ApcLineBus:
     def __init__(self, drives: Iterable[ApcDrive], *, four_wire: bool = False):
         self.line = CTSyncLine(drives, four_wire=four_wire)
+        self.lock = threading.RLock()   # NodeLink: one request on the line at a time, whichever thread asks
         self.closed = False
         self._us = 0
         self.links: dict[int, NodeLink] = {}

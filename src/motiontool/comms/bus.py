@@ -9,6 +9,7 @@ caller moves virtual time, as fast as Python goes and fully deterministic (like 
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Iterable, Mapping
 from typing import Any
 
@@ -43,16 +44,18 @@ class NodeLink(Link):
     def request(self, request: Request) -> Any:
         if self.bus.closed:
             raise LinkError("Lost connection: the simulated controllers have stopped")
-        if request.op == "advance":  # one clock for the whole bus
-            self.bus.advance(int(request.args.get("ms", 0)))
-            return None
-        return self.service.handle(request).result()
+        with self.bus.lock:  # one request in the simulation at a time, whichever thread asks
+            if request.op == "advance":  # one clock for the whole bus
+                self.bus.advance(int(request.args.get("ms", 0)))
+                return None
+            return self.service.handle(request).result()
 
 
 class EmbeddedBus:
     def __init__(self, nodes: Iterable[int] | Mapping[int, PlantConfig | None] = (1,), *,
                  master_node: int | None = None, master: MasterConfig | None = None):
         self.simulation = Simulation(nodes, master_node=master_node, master=master)
+        self.lock = threading.RLock()
         self.closed = False
         self.links: dict[int, NodeLink] = {}
         for node in self.simulation.nodes:
@@ -69,7 +72,8 @@ class EmbeddedBus:
         return self.links[node]
 
     def advance(self, ms: int) -> None:
-        self.simulation.run_for(ms)
+        with self.lock:
+            self.simulation.run_for(ms)
 
     def close(self) -> None:
         self.closed = True

@@ -40,6 +40,7 @@ class EmbeddedLink(Link):
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
         self._event_queue: list[LinkEvent] = []
+        self._lock = threading.RLock()   # synchronous: one request in the kernel at a time, whichever thread asks
         if realtime_factor is not None:
             # The kernel thread computes bursts of ticks while holding the GIL; with Python's default 5 ms
             # switch interval every request from the UI thread would wait that long (262 parameter reads of
@@ -60,7 +61,8 @@ class EmbeddedLink(Link):
         if not self.alive:
             raise LinkError("Lost connection: the simulated controller has stopped")
         if self._thread is None:
-            response = self.service.handle(request)
+            with self._lock:
+                response = self.service.handle(request)
         else:
             done: queue.Queue = queue.Queue(maxsize=1)
             self._requests.put((request, done))

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import base64
+import threading
 from abc import ABC, abstractmethod
 from collections.abc import Callable
 from typing import Any
@@ -11,9 +12,12 @@ from motiontool.comms.protocol import LinkEvent, Request, Status
 
 
 class Link(ABC):
-    """A connection to one controller. Requests block until answered; events arrive at subscribers."""
+    """A connection to one controller. Requests block until answered; events arrive at subscribers. Requests may
+    come from several threads at once (the IDE's window, its status worker, a wire link's event poller): every
+    Link answers each one as if they came one after the other."""
 
     kind = "abstract"
+    _ids = threading.Lock()     # request ids are unique per link even when several threads call at once
     status_interval_s = 0.0     # how often a display may ask for the status without loading the link
 
     def __init__(self) -> None:
@@ -49,8 +53,10 @@ class Link(ABC):
             callback(event)
 
     def call(self, op: str, **args: Any) -> Any:
-        self._next_id += 1
-        return self.request(Request(op, args, self._next_id))
+        with Link._ids:   # a wire drive answers a repeated id from its cache: two requests must never share one
+            self._next_id += 1
+            request_id = self._next_id
+        return self.request(Request(op, args, request_id))
 
     # --- convenience wrappers (the same requests, typed) ---------------------------------------------------
     def status(self) -> Status:
