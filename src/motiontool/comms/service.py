@@ -322,7 +322,7 @@ class ControllerService:
         if what not in groups:
             raise ValueError(f"save_memory {what!r}: choose one of {', '.join(groups)}")
         if groups[what]:
-            self.controller.params.save(groups[what])
+            self.controller.params.save(lambda index, keep=groups[what]: index // 100 in keep)
 
     def op_delete_eprom(self) -> None:
         self.wipe_at_power_on = True
