@@ -14,7 +14,14 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from motiontool.apc.camlaws import ERR_ABS_RESET, ERR_ARRAY_TOO_SMALL, ERR_SEGMENT_OVERRUN, ERR_SIZE_ZERO, law_value
+from motiontool.apc.camlaws import (
+    ERR_ABS_RESET,
+    ERR_ARRAY_TOO_SMALL,
+    ERR_SEGMENT_OVERRUN,
+    ERR_SIZE_ZERO,
+    INTERIOR,
+    linear,
+)
 from motiontool.apc.intmath import Ratio
 
 
@@ -62,13 +69,18 @@ class Cam:
         self.in_array, self.out1, self.out2, self.interp = in_array, out1, out2, interp
 
     def _inseg(self, seg: int, x: int) -> int:
+        """Slave travel after x master counts of segment `seg` (Out1 by its law plus a linear Out2)."""
+        big_x = self.in_array[seg]
+        if x <= 0:
+            return 0
+        if x >= big_x:
+            return self._total(seg)
         code = self.mode
         if code == -1:
             code = self.interp[seg] if self.interp is not None else 0
-        big_x = self.in_array[seg]
-        value = law_value(code, x, big_x, self.out1[seg])
+        value = (INTERIOR[code] if 0 <= code < 6 else linear)(x, big_x, self.out1[seg])
         if self.out2 is not None:
-            value += law_value(0, x, big_x, self.out2[seg])
+            value += linear(x, big_x, self.out2[seg])
         return value
 
     def _total(self, seg: int) -> int:
@@ -121,13 +133,21 @@ class Cam:
         Raises CamError on a delta-segment-limit breach (Stop plus the trip, L3524-3546)."""
         self.wrapped = 0
         pos = self.position + master_delta
-        if master_delta > 0 and not self.single_shot and pos < self.in_array[self.segment]:
-            # inside the present segment (the common case)
-            now = self._inseg(self.segment, pos)
-            out = now - self._done_here
-            self.position, self._done_here = pos, now
-            ratio = self.ratio
-            return out if ratio.numerator == ratio.denominator and not ratio.remainder else ratio.step(out)
+        if master_delta > 0 and not self.single_shot:
+            seg = self.segment
+            big_x = self.in_array[seg]
+            if pos < big_x:
+                # inside the present segment (the common case): _inseg's interior without its call and end checks
+                code = self.mode
+                if code == -1:
+                    code = self.interp[seg] if self.interp is not None else 0
+                now = (INTERIOR[code] if 0 <= code < 6 else linear)(pos, big_x, self.out1[seg])
+                if self.out2 is not None:
+                    now += linear(pos, big_x, self.out2[seg])
+                out = now - self._done_here
+                self.position, self._done_here = pos, now
+                ratio = self.ratio
+                return out if ratio.numerator == ratio.denominator and not ratio.remainder else ratio.step(out)
         if self.single_shot:
             if self.complete:
                 return 0

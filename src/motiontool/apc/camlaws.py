@@ -22,28 +22,52 @@ ERR_ARRAY_TOO_SMALL, ERR_SEGMENT_OVERRUN, ERR_SIZE_ZERO, ERR_ABS_RESET = 1, 2, 3
 LAW_NAMES = ("Linear", "Cosine", "Square1", "Square2", "Cosine1", "Cosine2")
 
 
+# Inside a segment (0 < x < X) each law is a function of its own, so the kernel's CAM calls a segment's law
+# directly. Linear, Square1 and Square2 are exact rationals a/b rounded to the nearest count with halves away
+# from zero; the trigonometric laws round a double once.
+def linear(x: int, big_x: int, y: int) -> int:
+    a = y * x
+    if a >= 0:
+        return (2 * a + big_x) // (2 * big_x)
+    return -((big_x - 2 * a) // (2 * big_x))
+
+
+def square1(x: int, big_x: int, y: int) -> int:
+    a, b = y * x * x, big_x * big_x
+    if a >= 0:
+        return (2 * a + b) // (2 * b)
+    return -((b - 2 * a) // (2 * b))
+
+
+def square2(x: int, big_x: int, y: int) -> int:
+    a, b = y * x * (2 * big_x - x), big_x * big_x
+    if a >= 0:
+        return (2 * a + b) // (2 * b)
+    return -((b - 2 * a) // (2 * b))
+
+
+def cosine(x: int, big_x: int, y: int) -> int:        # half-cosine from rest to rest
+    return round(y * (1.0 - math.cos(math.pi * x / big_x)) / 2.0)
+
+
+def cosine1(x: int, big_x: int, y: int) -> int:       # sine acceleration from rest to 2Y/X
+    u = x / big_x
+    return round(y * (u - math.sin(math.pi * u) / math.pi))
+
+
+def cosine2(x: int, big_x: int, y: int) -> int:       # sine deceleration from 2Y/X to rest
+    u = x / big_x
+    return round(y * (u + math.sin(math.pi * u) / math.pi))
+
+
+# law code → its interior function; any other code interpolates linearly (**inferred**)
+INTERIOR = (linear, cosine, square1, square2, cosine1, cosine2)
+
+
 def law_value(code: int, x: int, big_x: int, y: int) -> int:
     """Slave travel after x of a segment's X master counts (0 ≤ x ≤ X), rounded to a count; exact at both ends."""
     if x <= 0:
         return 0
     if x >= big_x:
         return y
-    if code not in (1, 4, 5):
-        # exact rationals (Linear, also for an unknown code, **inferred**; Square1; Square2), rounded to the
-        # nearest count with halves away from zero
-        if code == 2:
-            a, b = y * x * x, big_x * big_x
-        elif code == 3:
-            a, b = y * x * (2 * big_x - x), big_x * big_x
-        else:
-            a, b = y * x, big_x
-        if a >= 0:
-            return (2 * a + b) // (2 * b)
-        return -((b - 2 * a) // (2 * b))
-    if code == 1:      # Cosine: half-cosine from rest to rest
-        return round(y * (1.0 - math.cos(math.pi * x / big_x)) / 2.0)
-    if code == 4:      # Cosine1: sine acceleration from rest to 2Y/X
-        u = x / big_x
-        return round(y * (u - math.sin(math.pi * u) / math.pi))
-    u = x / big_x      # 5 Cosine2: sine deceleration from 2Y/X to rest
-    return round(y * (u + math.sin(math.pi * u) / math.pi))
+    return (INTERIOR[code] if 0 <= code < 6 else linear)(x, big_x, y)

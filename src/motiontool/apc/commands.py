@@ -228,7 +228,8 @@ class ControlCommands(Conversions):
 
     def APCSetReferencePosition(self, Turns: int, Position: int, PositionFine: int) -> int:
         """User-program reference source: three 16-bit fields (L3093-3110)."""
-        self.ref.user_word = user_word(Turns, Position, PositionFine)
+        # user_word() written out: the CTSync examples call this in every sample
+        self.ref.user_word = ((Turns & 0xFFFF) << 32) | ((Position & 0xFFFF) << 16) | (PositionFine & 0xFFFF)
         return OK
 
     def APCSetFeedbackPosition(self, Turns: int, Position: int, PositionFine: int) -> int:
@@ -270,8 +271,7 @@ class ControlCommands(Conversions):
 
     @outputs("Reference1%", "Reference2%", "AuxRef%", "Status%")
     def CTSyncGetSlaveReferences(self) -> tuple[int, int, int, int]:
-        r1, r2, aux = self.ctsync_in
-        return r1, r2, aux, self.ctsync_status
+        return self.ctsync_received
 
     # --- position loop (L4052-4252) -----------------------------------------------------------------------------
     def _loop_set(self, attr: str, value: int, lo: int, hi: int) -> int:

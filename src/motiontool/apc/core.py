@@ -226,8 +226,15 @@ class KernelCore:
         pos0 = self.pos0
         if self.run_mode:
             ref, fb, tb = self.ref, self.fb, self.turns_bits
-            self._first_read(ref, pos0, tb)
-            self._first_read(fb, pos0, tb)
+            # the sample's first reads; the two common sources without a call (what _first_read does)
+            if ref.selector == USER_PROGRAM and pos0 is not None:
+                ref.sample_start_position, ref.sample_start_integrated = ref.position, ref.integrated
+            else:
+                self._first_read(ref, pos0, tb)
+            if fb.selector == 0:
+                fb.refresh(plant.encoder_word(), tb, True)
+            else:
+                self._first_read(fb, pos0, tb)
             if pos0 is not None:
                 self.task = "pos0"
                 pos0()

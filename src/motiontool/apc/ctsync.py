@@ -54,18 +54,18 @@ class CTSyncLine:
         self.samples += 1
         message, fault = self._in_flight, self.faults.pop(self.samples, None)
         if message is not None and fault is None:
+            received = (*message, 1)
             for d in self.drives:
-                d.ctsync_in = message
-                d.ctsync_status = 1
+                d.ctsync_received = received
                 d.ctsync_counts[0] += 1
-        else:
+        else:   # the previous data stay, with this sample's status
             missing = fault == "missing" or message is None and self.samples > 1 and bool(self.masters())
             for d in self.drives:
                 if message is None or fault == "missing":
-                    d.ctsync_status = 0
+                    d.ctsync_received = (*d.ctsync_received[:3], 0)
                     d.ctsync_counts[2] += missing
                 else:
-                    d.ctsync_status = FAULT_STATUS[fault]
+                    d.ctsync_received = (*d.ctsync_received[:3], FAULT_STATUS[fault])
                     d.ctsync_counts[1] += 1
         sent = None
         for d in self.drives:

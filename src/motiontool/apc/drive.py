@@ -33,8 +33,9 @@ class ApcDrive(ControlCommands, ReferenceCommands, KernelCore):
         self.converter = EmbeddedConverter()
         self.user_converter = UserDefinedConverter()
         self.ctsync_out: tuple[int, int, int] | None = None
-        self.ctsync_in: tuple[int, int, int] = (0, 0, 0)
-        self.ctsync_status = 0            # nothing received yet: "zero or fewer bytes than expected" (L3276)
+        # Reference1, Reference2, AuxRef of the last message received and the status of this sample's: nothing
+        # received yet is "zero or fewer bytes than expected" (L3276); CTSyncGetSlaveReferences returns it as is
+        self.ctsync_received: tuple[int, int, int, int] = (0, 0, 0, 0)
         self.ctsync_counts = [0, 0, 0]    # valid, invalid, missing messages (91.17-91.19)
         super().__init__(plant, pos_rate=pos_rate)
         for i, key in enumerate(((91, 17), (91, 18), (91, 19))):
