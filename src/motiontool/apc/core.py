@@ -55,6 +55,15 @@ class Slots(dict):
 class KernelCore:
     """State and tick of one SM-Applications APC with its drive (see ApcDrive for the public API)."""
 
+    # The attributes of the tick as slots: a drive has more attributes than CPython keeps in an instance's
+    # compact layout (30), so in its dictionary each of these would cost a hashed look-up, some 40 per sample.
+    # The rest live in __dict__.
+    __slots__ = ("__dict__", "__weakref__", "samples", "time_ns", "period_ns", "quarters", "plant", "slots", "ref",
+                 "fb", "pg", "opg", "cam", "loop", "channel", "params", "turns_bits", "pos0", "pos1", "task",
+                 "run_mode", "enabled", "reset_status", "_was_enabled", "_reset_request", "reference", "_active",
+                 "_ref_last", "offset_select", "stop_mode", "trip", "drive_enabled", "_pipe", "_limit_rpm",
+                 "_limit", "ctsync_received", "ctsync_counts", "ctsync_out")
+
     def __init__(self, plant: PlantConfig | None = None, *, pos_rate: int | None = None):
         self.params = DriveParameters()
         if pos_rate is not None:
