@@ -61,8 +61,8 @@ class KernelCore:
     __slots__ = ("__dict__", "__weakref__", "samples", "time_ns", "period_ns", "quarters", "plant", "slots", "ref",
                  "fb", "pg", "opg", "cam", "loop", "channel", "params", "turns_bits", "pos0", "pos1", "task",
                  "run_mode", "enabled", "reset_status", "_was_enabled", "_reset_request", "reference", "_active",
-                 "_ref_last", "offset_select", "stop_mode", "trip", "drive_enabled", "_pipe", "_limit_rpm",
-                 "_limit", "ctsync_received", "ctsync_counts", "ctsync_out")
+                 "_ref_last", "offset_select", "stop_mode", "trip", "drive_enabled", "_demand3", "_demand2",
+                 "_demand1", "_limit_rpm", "_limit", "ctsync_received", "ctsync_counts", "ctsync_out")
 
     def __init__(self, plant: PlantConfig | None = None, *, pos_rate: int | None = None):
         self.params = DriveParameters()
@@ -120,7 +120,8 @@ class KernelCore:
         self.error_id = 0                    # 90.49
         self.trip = ""                       # "" | "Tr81" | "Tr44"
         self.drive_enabled = True            # the drive's enable and run command (→ #1.11)
-        self._pipe = (0, 0, 0)               # drive speed demands of samples k-3, k-2, k-1 (APC units)
+        # the drive speed demands (APC units) latched 3, 2 and 1 samples ago: the output channel's pipeline
+        self._demand3 = self._demand2 = self._demand1 = 0
         self._limit_rpm, self._limit = None, 0   # #1.06 and its speed, cached
         self._install_virtual_parameters()
         self.reinit()
@@ -225,9 +226,8 @@ class KernelCore:
         t_prev = self.time_ns
         self.time_ns = t_prev + self.period_ns
         plant = self.plant
-        pipe = self._pipe
         before = plant.position
-        if plant.step(pipe[0], pipe[1], self.drive_enabled and not self.trip):
+        if plant.step(self._demand3, self._demand2, self.drive_enabled and not self.trip):
             self._markers_passed(before, t_prev)
         if self.slots.fitted:
             for slot in self.slots.fitted:
@@ -241,7 +241,7 @@ class KernelCore:
             else:
                 self._first_read(ref, pos0, tb)
             if fb.selector == 0:
-                fb.refresh(plant.encoder_word(), tb, True)
+                fb.refresh(plant.word, tb, True)
             else:
                 self._first_read(fb, pos0, tb)
             if pos0 is not None:
@@ -328,7 +328,7 @@ class KernelCore:
             if values.get((81, 17), 0) == 1:
                 self.trip_drive("Tr44", "output channel over range (#1.06)")
             speed = limit if speed > 0 else -limit
-        self._pipe = (pipe := self._pipe)[1], pipe[2], speed
+        self._demand3, self._demand2, self._demand1 = self._demand2, self._demand1, speed
 
     # --- the kernel ----------------------------------------------------------------------------------------------
     def _kernel(self) -> None:

@@ -35,6 +35,7 @@ class Plant:
         self.position = self.config.start_revolutions * REV    # 48-bit word units, float
         self.speed = 0.0                                       # APC speed units
         self._step = REV // max(1, min(self.config.encoder_cpr, 1 << 32))
+        self.word = self._quantised()                          # the drive encoder's word, kept with the position
         angle = self.config.marker_angle
         self.marker_phase = None if angle is None else angle * REV
         self._mark_window = (-math.inf, math.inf)   # the marker positions around the motor (see passed_marker)
@@ -83,11 +84,17 @@ class Plant:
             v *= e
         self.position = pos
         self.speed = v
+        step = self._step
+        self.word = (int(pos // step) * step) & WORD48
         lo, hi = self._mark_window
         return pos < lo or pos >= hi
 
     def encoder_word(self) -> int:
-        """The drive encoder's 48-bit word, quantised to its resolution."""
+        """The drive encoder's 48-bit word, quantised to its resolution (the attribute `word`, set with every
+        position)."""
+        return self.word
+
+    def _quantised(self) -> int:
         step = self._step
         return (int(self.position // step) * step) & WORD48
 
