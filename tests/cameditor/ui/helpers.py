@@ -3,6 +3,8 @@ pyqtgraph diagram (QMouseEvents sent to its viewport, so pyqtgraph's own hover/d
 
 from __future__ import annotations
 
+import contextlib
+
 from PySide6.QtCore import QEvent, QPoint, QPointF, Qt
 from PySide6.QtGui import QMouseEvent
 from PySide6.QtWidgets import QApplication, QComboBox, QDialogButtonBox, QLineEdit
@@ -41,6 +43,31 @@ def cell_center(view, row: int, col: int) -> QPoint:
     return view.visualRect(view.model().index(row, col)).center()
 
 
+@contextlib.contextmanager
+def handled_edit(qtbot, editor, expected: str):
+    """The block commits a Fix Points cell; leaving it waits until the editor has handled that edit (applied it
+    or shown why not) and checks that the value committed is `expected`.
+
+    The editor applies a cell edit queued, after the cell editor has closed (and Qt deletes the cell editor
+    with deleteLater): a fixed wait read the message line before the edit under load, and a wait on the closed
+    editor touched a deleted QLineEdit. A probe connected queued after the editor's own slot runs after it:
+    queued calls to one thread arrive in the order they were posted.
+    """
+    model = editor.fix_table.model
+    committed: list[object] = []
+
+    def probe(_row: int, _field: str, value: object) -> None:
+        committed.append(value)
+
+    model.edit_requested.connect(probe, Qt.ConnectionType.QueuedConnection)
+    try:
+        yield
+        qtbot.waitUntil(lambda: bool(committed), timeout=5000)
+    finally:
+        model.edit_requested.disconnect(probe)
+    assert committed == [expected], f"the cell committed {committed}, typed {expected!r}"
+
+
 def choose_type(qtbot, editor, row: int, new_type: str) -> None:
     """Double-click the Type cell and pick a type in its combo box [DG L3986]."""
     view = editor.fix_table.view
@@ -50,23 +77,23 @@ def choose_type(qtbot, editor, row: int, new_type: str) -> None:
     assert combos, "no type editor opened"
     combo = combos[0]
     combo.hidePopup()
-    combo.setCurrentText(new_type)
-    combo.activated.emit(combo.currentIndex())
-    qtbot.wait(20)  # the edit is applied queued
+    with handled_edit(qtbot, editor, new_type):
+        combo.setCurrentText(new_type)
+        combo.activated.emit(combo.currentIndex())
 
 
 def edit_cell(qtbot, editor, row: int, col: int, text: str) -> None:
+    """Double-click a Fix Points cell, type `text` and press Enter; returns when the editor has handled the edit."""
     view = editor.fix_table.view
     qtbot.mouseClick(view.viewport(), L, pos=cell_center(view, row, col))
     qtbot.mouseDClick(view.viewport(), L, pos=cell_center(view, row, col))
     lines = [w for w in view.findChildren(QLineEdit) if w.isVisible()]
     assert lines, "no cell editor opened"
     line = lines[0]
-    line.selectAll()
-    qtbot.keyClicks(line, text)
-    qtbot.keyClick(line, Qt.Key.Key_Return)
-    qtbot.waitUntil(lambda: not line.isVisible(), timeout=5000)
-    qtbot.wait(100)  # the edit is applied queued, after the cell editor has closed
+    with handled_edit(qtbot, editor, text):
+        line.selectAll()
+        qtbot.keyClicks(line, text)
+        qtbot.keyClick(line, Qt.Key.Key_Return)
 
 
 def field(qtbot, widget, text: str) -> None:
