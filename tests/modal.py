@@ -27,6 +27,7 @@ from PySide6.QtWidgets import (
 
 Reply = Callable[[QWidget], None]
 POLL_MS = 20
+REPLIES = "_modal_replies"  # dynamic property: how many replies this dialog got
 
 
 def trace(line: str) -> None:
@@ -109,7 +110,6 @@ class Answerer:
         self.seen: list[str] = []
         self.errors: list[BaseException] = []
         self._busy = False
-        self._times: dict[int, int] = {}
         self.timer = QTimer()
         self.timer.setInterval(POLL_MS)
         self.timer.timeout.connect(self._poll)
@@ -125,10 +125,13 @@ class Answerer:
             reply = cancel_reply
         self._busy = True
         self.seen.append(f"{type(dialog).__name__} {dialog.windowTitle()!r}")
-        self._times[id(dialog)] = self._times.get(id(dialog), 0) + 1
-        if self._times[id(dialog)] > 3:  # the reply did not close it: give up on it rather than loop
-            self.errors.append(AssertionError(f"{self.seen[-1]} stayed open after {self._times[id(dialog)] - 1} "
-                                              "replies"))
+        # The count lives on the dialog itself: a Python id() is reused once a closed dialog's wrapper is freed,
+        # so a count kept by id() added up the replies to different dialogs (a message box and a later file
+        # dialog shared one) and failed a walk whose every dialog had closed.
+        times = (dialog.property(REPLIES) or 0) + 1
+        dialog.setProperty(REPLIES, times)
+        if times > 3:  # the reply did not close it: give up on it rather than loop
+            self.errors.append(AssertionError(f"{self.seen[-1]} stayed open after {times - 1} replies"))
             reply = cancel_reply
         trace("   modal " + self.seen[-1])
         try:
