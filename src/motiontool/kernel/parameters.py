@@ -7,7 +7,7 @@ snapshot at program start and restores it at the end unless SAVE AXPARS/GLBPARS 
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 
 from motiontool.kernel.errors import ControllerError
 from motiontool.paramdb import Parameter, ParameterDatabase, ParameterError, database
@@ -79,11 +79,12 @@ class ParameterStore:
         """Fast access by code name inside the kernel: params["KPROP"]."""
         return self.values[self.db.get(name).index]
 
-    def save(self, which: Callable[[int], bool]) -> None:
+    def save(self, which: Callable[[int], bool] | Iterable[int]) -> None:
         """SAVE AXPARS / GLBPARS / USRPARS: keep the current values of the parameters `which` selects past the
-        program."""
+        program — a predicate on the parameter index, or parameter groups such as (19, 32, 33)."""
+        groups = None if callable(which) else frozenset(which)
         for index, value in self.values.items():
-            if which(index):
+            if (index // 100 in groups) if groups is not None else which(index):
                 self.saved[index] = value
 
     def restore(self) -> None:
