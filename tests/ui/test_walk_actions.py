@@ -59,17 +59,19 @@ def actions_of(window: QWidget) -> list[tuple[str, QAction, QToolButton | None]]
             else:
                 add(f"{path} ▸ {action.text()}", action)
 
-    if isinstance(window, QMainWindow):
-        for top in window.menuBar().actions():
-            if top.menu() is not None:
-                walk_menu(top.menu(), top.text())
-    for bar in window.findChildren(QToolBar):
+    for bar in window.findChildren(QToolBar):  # first: an action on a toolbar is clicked there
         if bar.window() is not window:
             continue
         for action in bar.actions():
             button = bar.widgetForAction(action)
+            if isinstance(button, QToolButton) and not button.isVisible():
+                continue   # in the toolbar's overflow (or a hidden toolbar): the menu entry is fired instead
             add(f"toolbar {bar.windowTitle()} ▸ {action.text()}", action,
                 button if isinstance(button, QToolButton) else None)
+    if isinstance(window, QMainWindow):
+        for top in window.menuBar().actions():
+            if top.menu() is not None:
+                walk_menu(top.menu(), top.text())
     for action in window.actions():
         add(f"shortcut {action.text()}", action)
     return [f for f in found.values() if f[0].split(" ▸ ")[-1].replace("&", "") not in NOT_WALKED]

@@ -32,6 +32,17 @@ RESET_ENTRIES = (("Parameter", "parameters", "global and axis parameters go back
                  ("User Parameters", "user", "the user parameters 19-xx go back to their defaults"),
                  ("Complete", "all", "parameters, arrays and stored programs: an immediate factory reset"))
 PROGRAM_NUMBERS = range(0, 91)  # DG 2627-2639: up to 91 programs, numbers 0-90
+# Memory ▸ (DG 2908-2946): the older controllers' Save RAM / Delete EPROM and the MCO 305's four entries
+MEMORY_ENTRIES = (("Save RAM", "ram", "programs, parameters and arrays are copied from RAM to the EPROM (like "
+                   "SAVEPROM)"),
+                  ("Delete EPROM", "delete", "the EPROM is erased: the controller starts with its factory settings "
+                   "at the next power on. Back up the programs and the configuration first (Parameters → Save to "
+                   "file)"),
+                  ("User Parameters → EPROM", "user", "the user parameters 19-xx are saved in the EPROM"),
+                  ("Arrays → EPROM", "arrays", "the arrays are saved in the EPROM"),
+                  ("All App. Data → EPROM", "app", "parameters and arrays are saved in the EPROM"),
+                  ("Option Parameters → EPROM", "option", "the option's parameters 32-xx and 33-xx are saved in "
+                   "the EPROM"))
 
 
 def _config_io():
@@ -148,16 +159,35 @@ def reset(w, what: str, ask: bool = True) -> bool:
     return True
 
 
+def memory(w, what: str, *, ask: bool = True) -> bool:
+    """Controller → Memory ▸ (DG 2908-2946): each entry after one confirmation."""
+    title, _key, effect = next(e for e in MEMORY_ENTRIES if e[1] == what)
+    link = _link(w)
+    if link is None:
+        return False
+    if ask and QMessageBox.question(w, title, f"{title}: {effect}. Continue?") != QMessageBox.StandardButton.Yes:
+        return False
+    try:
+        link.call("delete_eprom") if what == "delete" else link.call("save_memory", what=what)
+    except LinkError as exc:
+        w.messages.ide(f"{title}: {exc}")
+        return False
+    w.messages.ide(f"Controller {w.bridge.controller_id}: {title} done"
+                   + (" (takes effect at the next power on)" if what == "delete" else ""))
+    return True
+
+
 class ProgramsDialog(QDialog):
     """Controller → Programs (DG 2627-2794): the programs stored on the controller; Save / Save as compile the
-    current editor into permanent memory, Start runs the selected one, Delete / Delete all remove them."""
+    current editor into permanent memory (with Include Sourcecode also its source and include files), Upload
+    brings a stored source back, Start runs the selected one, Delete / Delete all remove them."""
 
     def __init__(self, w) -> None:
         super().__init__(w)
         self.w = w
         self.setWindowTitle(f"Programs — controller {w.bridge.controller_id}")
-        self.table = QTableWidget(0, 3)
-        self.table.setHorizontalHeaderLabels(["No.", "Name", "Autostart"])
+        self.table = QTableWidget(0, 4)
+        self.table.setHorizontalHeaderLabels(["No.", "Name", "Autostart", "Source"])
         self.table.horizontalHeader().setStretchLastSection(True)
         self.table.verticalHeader().hide()
         self.table.setSelectionBehavior(QAbstractItemView.SelectionBehavior.SelectRows)
@@ -167,15 +197,20 @@ class ProgramsDialog(QDialog):
         for text, slot in (("Save", self.save), ("Save as...", self.save_as), ("Start", self.start),
                            ("Autostart on", lambda: self.autostart(True)),
                            ("Autostart off", lambda: self.autostart(False)),
-                           ("Delete", self.delete), ("Delete all", self.delete_all), ("Close", self.accept)):
+                           ("Upload...", self.upload), ("Delete", self.delete), ("Delete all", self.delete_all),
+                           ("Close", self.accept)):
             button = QPushButton(text)
             button.clicked.connect(lambda *_, s=slot: s())
             buttons.addWidget(button)
             self.buttons[text] = button
+        self.include_source = QCheckBox("Include Sourcecode")
+        self.include_source.setToolTip("Save also stores the program's source and its include files, so Upload can "
+                                       "bring them back (DG 2643-2669)")
         layout = QVBoxLayout(self)
         layout.addWidget(self.table)
+        layout.addWidget(self.include_source)
         layout.addLayout(buttons)
-        self.resize(460, 320)
+        self.resize(640, 340)
         self.refresh()
 
     @property
@@ -192,6 +227,9 @@ class ProgramsDialog(QDialog):
             self.table.setItem(r, 0, QTableWidgetItem(str(p["number"])))
             self.table.setItem(r, 1, QTableWidgetItem(p["name"]))
             self.table.setItem(r, 2, QTableWidgetItem("⦿" if p.get("autostart") else ""))
+            source = QTableWidgetItem("✓" if p.get("source") else "")
+            source.setToolTip(f"stored {p['stored_at']}" if p.get("stored_at") else "stored without its source")
+            self.table.setItem(r, 3, source)
 
     def selected_number(self) -> int | None:
         row = self.table.currentRow()
@@ -210,8 +248,10 @@ class ProgramsDialog(QDialog):
                 self.w.messages.ide("Programs: all 91 program numbers are used")
                 return False
         image = outcome.result.image
+        source = self._source(outcome.result) if self.include_source.isChecked() else None
         try:
-            self.link.download(image.to_bytes(), number=number, name=(name or image.name)[:8])
+            self.link.download(image.to_bytes(), number=number, name=(name or image.name)[:8], source=source,
+                               stack_size=self.w.development.compiler_settings().stack_size)
         except LinkError as exc:
             self.w.messages.ide(f"Programs: {exc}")
             return False
@@ -235,6 +275,54 @@ class ProgramsDialog(QDialog):
         editor = self.w.current_editor()
         path = editor.property("path") if editor is not None else None
         return (Path(path).stem if path else "PROGRAM")[:8]
+
+    def _source(self, result) -> dict[str, str]:
+        """The program (first) and the include files it read, by file name."""
+        editor = self.w.current_editor()
+        files = {Path(self.w.program_label(editor)).name: editor.toPlainText()}
+        for included in result.files[1:]:
+            try:
+                files[Path(included).name] = Path(included).read_text(encoding="utf-8")
+            except OSError:
+                continue  # a file it read a moment ago and cannot read now is left out, not fatal
+        return files
+
+    def upload(self, *, folder: Path | None = None) -> Path | None:
+        """Upload (DG 2671-2675): only for a program stored with its source; the suggested name carries the time
+        it was stored. The program opens in a new tab; its include files are written beside it."""
+        number = self.selected_number()
+        if number is None:
+            return None
+        try:
+            stored = self.link.call("upload_source", number=number)
+        except LinkError as exc:
+            self.w.messages.ide(f"Upload: {exc}")
+            return None
+        main = Path(stored["main"])
+        stamp = stored["stored_at"].replace(":", "").replace("-", "").replace(" ", "_")
+        suggested = f"{main.stem}_{stamp}{main.suffix or '.m'}"
+        if folder is None:
+            chosen, _ = QFileDialog.getSaveFileName(self, "Upload program", suggested, "APOSS programs (*.m)")
+            if not chosen:
+                return None
+            target = Path(chosen)
+        else:
+            target = Path(folder) / suggested
+        from motiontool.fileio import atomic_write_text
+
+        try:
+            for name, text in stored["files"].items():
+                path = target if name == stored["main"] else target.parent / Path(name).name
+                if path != target and path.exists() and path.read_text(encoding="utf-8") != text:
+                    path = path.with_name(f"{path.stem}_{stamp}{path.suffix}")  # the user's own file stays
+                    self.w.messages.ide(f"Upload: {name} differs from the file beside it: written as {path.name}")
+                atomic_write_text(path, text)
+        except OSError as exc:
+            self.w.messages.ide(f"Upload: {target}: {exc.strerror or exc}")
+            return None
+        self.w.messages.ide(f"Program {number} uploaded to {target}")
+        self.w.open_file(target)
+        return target
 
     def start(self) -> bool:
         number = self.selected_number()

@@ -12,6 +12,7 @@ from PySide6.QtCore import QObject, QTimer
 from PySide6.QtWidgets import QInputDialog
 
 from motiontool.comms.protocol import LinkError
+from motiontool.ui.compiler_settings import NO_XREF
 from motiontool.ui.watch import WatchPane
 
 WATCH_INTERVAL_MS = 250
@@ -60,6 +61,9 @@ class Debugger(QObject):
         dev = self.w.development
         if self.active:
             self.end()
+        if not dev.compiler_settings().cross_reference:
+            self.w.messages.ide(NO_XREF)
+            return False
         if not dev.connect_default():
             return False
         outcome = dev.compile_current(debug=True)
@@ -80,7 +84,7 @@ class Debugger(QObject):
         try:
             if link.status().program_state == "running":
                 link.break_program()
-            link.download(image.to_bytes(), name=image.name)
+            link.download(image.to_bytes(), name=image.name, stack_size=dev.compiler_settings().stack_size)
             messages.ide(f"Loading {size} bytes ok")
             editor.set_debug_lines({e.line for e in image.lines if e.file == 0})
             link.call("set_breakpoints", lines=[n for n in editor.breakpoints() if n in editor.debug_lines])
@@ -91,6 +95,7 @@ class Debugger(QObject):
             return False
         self.editor = editor
         dev.ran[self.w.bridge.controller_id] = editor
+        dev.images[self.w.bridge.controller_id] = image
         editor.variable_value = self.read_value
         editor.breakpointsChanged.connect(self._send_breakpoints)
         editor.variableEditRequested.connect(self.change_value)
@@ -218,6 +223,9 @@ class Debugger(QObject):
 
     # --- watch (ide-spec 3.12, 3.13) -------------------------------------------------------------------
     def watch_add(self) -> None:
+        if not self.w.development.compiler_settings().cross_reference:
+            self.w.messages.ide(NO_XREF)
+            return
         self.watch.show_add_dialog()
 
     def watch_start(self) -> None:

@@ -14,6 +14,8 @@ from motiontool.comms.protocol import LinkError
 from motiontool.dpl.driver import CheckResult, check_source
 from motiontool.dpl.image import DplImage
 from motiontool.fileio import atomic_write_bytes
+from motiontool.ui.compiler_settings import CompilerSettings
+from motiontool.ui.compiler_settings import check as compiler_checks
 from motiontool.ui.controllers import APC_SIM, InterfaceConfig
 
 DEFAULT_CONTROLLER = ("embedded", 1)
@@ -31,6 +33,7 @@ class Development:
     def __init__(self, window) -> None:
         self.w = window
         self.ran: dict[int, object] = {}  # controller ID → the editor whose program was last started there
+        self.images: dict[int, object] = {}  # controller ID → the image downloaded there (Error History's Offset)
 
     # --- connection (ui/connection.py) ------------------------------------------------------------------
     def connect_default(self) -> bool:
@@ -63,9 +66,14 @@ class Development:
             result = check_source(editor.toPlainText(), path or name)
         else:
             result = compile_source(editor.toPlainText(), path or name, debug=debug, name=Path(name).stem)
+            result.diagnostics += compiler_checks(self.compiler_settings(), result, editor.toPlainText(),
+                                                  path or name)
         self.w.show_diagnostics(editor, result)
         first = next(((d.loc.line, d.loc.col) for d in result.errors), None)
         return CheckOutcome(result, first)
+
+    def compiler_settings(self) -> CompilerSettings:
+        return CompilerSettings.load(self.w.settings)
 
     def goto_first_error(self, outcome: CheckOutcome) -> None:
         line, col = outcome.first_error
@@ -79,7 +87,8 @@ class Development:
         messages = self.w.messages
         for d in outcome.result.diagnostics:
             messages.ide(d.format())
-        xref = self.write_cross_reference(outcome) if isinstance(outcome.result, CompileResult) else None
+        xref = self.write_cross_reference(outcome) if isinstance(outcome.result, CompileResult) \
+            and self.compiler_settings().cross_reference else None
         if xref is not None:
             messages.ide(f"Cross reference: {xref}")
         if outcome.result.ok:
@@ -160,9 +169,11 @@ class Development:
                 image = DplImage(self.w.current_editor().property("path") or "Untitled.dpl", outcome.result.source)
                 symbols = outcome.result.symbols
                 self.w.debugger.watch.set_variables(sorted(symbols.variables), sorted(symbols.arrays.items()))
-            link.download(image.to_bytes(), name=Path(image.name).name)
+            stack = self.compiler_settings().stack_size if isinstance(outcome.result, CompileResult) else None
+            link.download(image.to_bytes(), name=Path(image.name).name, stack_size=stack)
             link.start()
             self.ran[self.w.bridge.controller_id] = self.w.current_editor()
+            self.images[self.w.bridge.controller_id] = getattr(outcome.result, "image", None)
         except LinkError as exc:
             self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: {exc}")
             return False

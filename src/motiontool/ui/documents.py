@@ -52,8 +52,8 @@ def show_location(w, file: str, line: int, col: int, controller_id: int | None) 
     line. A controller's error names the program last run on that controller from this window; a compiler
     message names its file (a saved program, an include file, or an unsaved buffer's label)."""
     editor = None
-    if controller_id is not None:
-        editor = w.development.ran.get(controller_id)
+    if controller_id is not None:  # the program that ran there, else the one in front (DG 3023)
+        editor = w.development.ran.get(controller_id) or w.current_editor()
     else:
         for candidate in w.editors():
             if file in (candidate.property("path"), w.program_label(candidate)):

@@ -87,6 +87,9 @@ class MainWindow(QMainWindow):
         self.addDockWidget(Qt.DockWidgetArea.BottomDockWidgetArea, self.debugger.watch)
         self.debugger.watch.hide()
         build_menus(self)
+        from motiontool.ui.toolbar import build_toolbar
+
+        self.toolbar = build_toolbar(self)
         self.bridge.printed.connect(lambda t, text, cid: self.messages.controller(cid, text))
         self.bridge.controller_error.connect(self._controller_error)
         self.bridge.program_event.connect(self._program_event)

@@ -1,6 +1,5 @@
-"""The main window's menus with the manual's entries and shortcuts (ide-spec 1.26-1.50, 2.14-2.15).
-
-Entries whose feature does not exist yet are shown disabled, so the structure users know is visible."""
+"""The main window's menus with the manual's entries and shortcuts (ide-spec 1.26-1.50, 2.14-2.15); every entry
+does what the manual says (tests/ui/test_menus_complete.py finds none disabled for want of code)."""
 
 from __future__ import annotations
 
@@ -33,7 +32,7 @@ def build_menus(w) -> None:
             ("&New", "Ctrl+N", w.new_file), ("&Open...", "Ctrl+O", w.open_dialog), ("Recent &Files", None, "recent"),
             ("&Close", None, lambda: w.close_tab(w.tabs.currentIndex())), ("&Save", "Ctrl+S", lambda: w.save()),
             ("Save &as...", None, w.save_as),
-            None, ("&Print...", "Ctrl+P", lambda: _print(w)), ("Print set&up...", None, None), None,
+            None, ("&Print...", "Ctrl+P", lambda: _print(w)), ("Print set&up...", None, lambda: _page_setup(w)), None,
             ("Sa&mple", None, "samples"), None, ("E&xit Program", None, w.close),
         ]),
         ("&Edit", [
@@ -57,7 +56,8 @@ def build_menus(w) -> None:
             ("Watch Add", None, w.debugger.watch_add), ("Watch Start", None, w.debugger.watch_start),
             ("Watch Stop", None, w.debugger.watch_stop), None, ("&Syntax Check", "F4", dev.syntax_check),
             ("Compile to file...", None, lambda: dev.compile_to_file()), None,
-            ("Break all", None, dev.break_all), ("Start all", None, dev.start_all), ("Download all", None, None),
+            ("Break all", None, dev.break_all), ("Start all", None, dev.start_all),
+            ("Download all", None, lambda: _download_all(w)),
             ("Delete Programs all", None, dev.delete_programs_all), None,
             ("Select Controller...", None, lambda: _select_controller(w)),
             ("Close Interface", None, w.connection.close_interface),
@@ -66,9 +66,13 @@ def build_menus(w) -> None:
         ]),
         ("&Controller", [
             ("&Programs...", None, lambda: cm.show_programs(w)),
-            ("P&arameters", None, [("Save to file...", None, lambda: cm.save_parameters(w)),
+            ("P&arameters", None, [("Global...", None, lambda: _parameters(w, "global")),
+                                   ("Axis...", None, lambda: _parameters(w, "axis")),
+                                   ("Name...", None, lambda: _parameters(w, "name")),
+                                   ("Save to file...", None, lambda: cm.save_parameters(w)),
                                    ("Restore from file...", None, lambda: cm.restore_parameters(w))]),
-            ("&Memory", None, None),
+            ("&Memory", None, [(title, None, lambda *, k=key: cm.memory(w, k))
+                               for title, key, _effect in cm.MEMORY_ENTRIES]),
             ("&Reset", None, [(f"{title}...", None, lambda *, k=key: cm.reset(w, k))
                               for title, key, _effect in cm.RESET_ENTRIES]),
             None, ("Error &History...", None, lambda: _error_history(w)),
@@ -77,19 +81,25 @@ def build_menus(w) -> None:
         ("&Tools", [("&CAM-Editor", None, lambda: _cam_editor(w)), ("&Array Editor", None, lambda: _array_editor(w)),
                     ("&Oscilloscope", None, lambda: _scope(w))]),
         ("&Settings", [
-            ("&Editor...", None, lambda: _editor_settings(w)), ("&Compiler...", None, None),
+            ("&Editor...", None, lambda: _editor_settings(w)), ("&Compiler...", None, lambda: _compiler_settings(w)),
             ("Open last file", None, "open_last"),
-            ("&Interface...", None, lambda: _interface_settings(w)), ("&Language...", None, None),
+            ("&Interface...", None, lambda: _interface_settings(w)), ("&Language...", None, lambda: _language(w)),
         ]),
-        ("&Window", [("&New APOSS Window", None, lambda: _new_window(w)), ("&Cascade", None, None),
-                     ("Tile &vertically", None, None), ("Tile &horizontally", None, None)]),
+        ("&Window", [("&New APOSS Window", None, lambda: _new_window(w)),
+                     ("&Cascade", None, lambda: _window_menu().cascade(w)),
+                     ("Tile &vertically", None, lambda: _window_menu().tile(w, vertically=True)),
+                     ("Tile &horizontally", None, lambda: _window_menu().tile(w, vertically=False))]),
         ("&Help", [
-            ("&Contents", "F1", None), ("&Index", None, None), ("&SDO Dictionary", "F11", None), None,
+            ("&Contents", "F1", lambda: _help().show_help(w)), ("&Index", None, lambda: _help().show_index(w)),
+            ("&SDO Dictionary", "F11", lambda: _help().show_dictionary(w)), None,
             ("&About Program", None, w.about),
         ]),
     ]
     for title, entries in menus:
         menu = w.menuBar().addMenu(title)
+        if title == "&Window":  # the list of open windows follows the fixed entries (DG 3250)
+            fixed = len(entries)
+            menu.aboutToShow.connect(lambda *_, m=menu, n=fixed: _window_menu().fill(w, m, n))
         for entry in entries:
             if entry is None:
                 menu.addSeparator()
@@ -227,14 +237,54 @@ def _new_window(w) -> None:
 
 
 def _error_history(w) -> None:
-    from PySide6.QtWidgets import QMessageBox
+    from motiontool.ui.error_history import show_error_history
 
-    if not w.development.connect_default():
-        return
-    history = w.bridge.link.call("error_history")
-    lines = [f"{e['time_ms']:>8} ms  error {e['number']}: {e['text']}" + (f" (line {e['line']})" if e["line"] else "")
-             for e in history] or ["no errors since power-up"]
-    QMessageBox.information(w, "Error History", "\n".join(lines))
+    show_error_history(w)
+
+
+def _parameters(w, which: str) -> None:
+    from motiontool.ui import parameter_dialogs
+
+    {"global": parameter_dialogs.show_global, "axis": parameter_dialogs.show_axis,
+     "name": parameter_dialogs.show_name}[which](w)
+
+
+def _download_all(w) -> None:
+    from motiontool.ui.download_dialog import download_all
+
+    download_all(w)
+
+
+def _compiler_settings(w) -> None:
+    from motiontool.ui.compiler_settings import edit_compiler_settings
+
+    edit_compiler_settings(w)
+
+
+def _language(w) -> None:
+    from motiontool.ui.language import choose_language
+
+    choose_language(w)
+
+
+def _window_menu():
+    from motiontool.ui import window_menu
+
+    return window_menu
+
+
+def _help():
+    from motiontool.ui import help as help_module
+
+    return help_module
+
+
+def _page_setup(w) -> None:
+    """Print setup (DG 2231): page size, orientation and margins for the next Print."""
+    from PySide6.QtPrintSupport import QPageSetupDialog, QPrinter
+
+    w.printer = getattr(w, "printer", None) or QPrinter()
+    QPageSetupDialog(w.printer, w).exec()
 
 
 def _print(w) -> None:
@@ -246,6 +296,7 @@ def _print(w) -> None:
     except ImportError:  # the Essentials wheel may lack print support on some platforms
         w.messages.ide("Printing is not available in this Qt installation")
         return
-    printer = QPrinter()
+    printer = getattr(w, "printer", None) or QPrinter()  # Print setup's page, when it was set
+    w.printer = printer
     if QPrintDialog(printer, w).exec():
         editor.print_(printer)

@@ -1,0 +1,142 @@
+"""Controller → Error History (DG 2982-3027, ide-spec 2.31): the controller's last 50 errors, newest first, as
+the manual's table — #, Time (the controller's clock), Age (seconds since the error, recomputed on Refresh),
+Error, Message, Data, Offset (in the compiled program), Line. Refresh reads it again, Write saves a
+tab-separated text file a spreadsheet imports, Clear empties it; a double-click closes the dialog and shows the
+line in the program that ran on the controller ("The IDE cannot check that the source matches")."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+from PySide6.QtWidgets import (
+    QAbstractItemView,
+    QDialog,
+    QFileDialog,
+    QHBoxLayout,
+    QLabel,
+    QPushButton,
+    QTableWidget,
+    QTableWidgetItem,
+    QVBoxLayout,
+)
+
+from motiontool.comms.protocol import LinkError
+
+COLUMNS = ("#", "Time", "Age", "Error", "Message", "Data", "Offset", "Line")
+
+
+def statement_offset(image, line: int | None) -> int | None:
+    """The offset of the first instruction of `line` in the program image the IDE downloaded (decision I14)."""
+    if image is None or not line:
+        return None
+    return next((entry.pc for entry in image.lines if entry.file == 0 and entry.line == line), None)
+
+
+class ErrorHistoryDialog(QDialog):
+    def __init__(self, w, controller_id: int) -> None:
+        super().__init__(w)
+        self.w = w
+        self.controller_id = controller_id
+        self.entries: list[dict] = []
+        self.read_at = ""
+        self.setWindowTitle(f"Error History — controller {controller_id}")
+        self.header = QLabel()
+        self.table = QTableWidget(0, len(COLUMNS))
+        self.table.setHorizontalHeaderLabels(COLUMNS)
+        self.table.horizontalHeader().setStretchLastSection(True)
+        self.table.verticalHeader().hide()
+        self.table.setSelectionBehavior(QAbstractItemView.SelectionBehavior.SelectRows)
+        self.table.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
+        for column, width in enumerate((36, 80, 60, 50, 220, 160, 60)):
+            self.table.setColumnWidth(column, width)
+        self.table.cellDoubleClicked.connect(lambda row, _column: self.jump(row))
+        buttons = QHBoxLayout()
+        self.buttons = {}
+        for text, slot in (("Refresh", self.refresh), ("Write...", self.write_dialog), ("Clear", self.clear),
+                           ("Close", self.reject)):
+            button = QPushButton(text)
+            button.clicked.connect(lambda *_, s=slot: s())
+            buttons.addWidget(button)
+            self.buttons[text] = button
+        layout = QVBoxLayout(self)
+        layout.addWidget(self.header)
+        layout.addWidget(self.table)
+        layout.addLayout(buttons)
+        self.resize(820, 380)
+        self.refresh()
+
+    def link(self):
+        return self.w.controllers.link(self.controller_id, interface=self.w.connection.interface_key)
+
+    def refresh(self) -> bool:
+        """Read the list; Age counts from the controller's clock now."""
+        try:
+            link = self.link()
+            history = link.call("error_history")
+            now = link.status().time_ms
+        except (LinkError, ValueError) as exc:
+            self.header.setText(f"Controller {self.controller_id}: {exc}")
+            return False
+        image = self.w.development.images.get(self.controller_id)
+        self.entries = []
+        for e in reversed(history):  # newest first (DG 2996)
+            offset = e.get("offset", statement_offset(image, e.get("line")))
+            self.entries.append({**e, "age_s": max(0, now - e["time_ms"]) / 1000, "offset": offset})
+        self.read_at = time.strftime("%Y-%m-%d %H:%M:%S")
+        self.header.setText(f"Controller {self.controller_id}, read {self.read_at}: {len(self.entries)} error(s)")
+        self.table.setRowCount(len(self.entries))
+        for row, e in enumerate(self.entries):
+            for column, value in enumerate(self.row_values(row, e)):
+                self.table.setItem(row, column, QTableWidgetItem(value))
+        return True
+
+    @staticmethod
+    def row_values(row: int, e: dict) -> list[str]:
+        return [str(row + 1), str(e["time_ms"]), f"{e['age_s']:.1f}", str(e["number"]), e["text"],
+                e.get("detail", "") or "", "" if e["offset"] is None else str(e["offset"]),
+                "" if not e.get("line") else str(e["line"])]
+
+    def write(self, path: Path) -> None:
+        """Write (DG 3025): an ASCII text file, tab-separated, that a spreadsheet can import."""
+        from motiontool.fileio import atomic_write_text
+
+        lines = [f"Error History, controller {self.controller_id}, read {self.read_at}", "\t".join(COLUMNS)]
+        lines += ["\t".join(self.row_values(row, e)) for row, e in enumerate(self.entries)]
+        atomic_write_text(path, "\n".join(lines) + "\n")
+
+    def write_dialog(self) -> bool:
+        chosen, _ = QFileDialog.getSaveFileName(self, "Write error history", "errors.txt", "Text (*.txt)")
+        if not chosen:
+            return False
+        try:
+            self.write(Path(chosen))
+        except OSError as exc:
+            self.header.setText(f"Not written: {chosen}: {exc.strerror or exc}")
+            return False
+        self.w.messages.ide(f"Error history of controller {self.controller_id} written to {chosen}")
+        return True
+
+    def clear(self) -> None:
+        try:
+            self.link().call("clear_error_history")
+        except (LinkError, ValueError) as exc:
+            self.header.setText(f"Controller {self.controller_id}: {exc}")
+            return
+        self.refresh()
+
+    def jump(self, row: int) -> bool:
+        """Double-click (DG 3021-3023): close the dialog and show the line in the program that ran there."""
+        line = self.entries[row].get("line") if 0 <= row < len(self.entries) else None
+        if not line:
+            self.header.setText("This error has no program line")
+            return False
+        self.accept()
+        from motiontool.ui.documents import show_location
+
+        return show_location(self.w, "", int(line), 1, self.controller_id)
+
+
+def show_error_history(w) -> None:
+    if w.development.connect_default():
+        ErrorHistoryDialog(w, w.bridge.controller_id).exec()

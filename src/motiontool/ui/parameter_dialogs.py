@@ -1,0 +1,372 @@
+"""Controller → Parameters ▸ Global / Axis / Name (DG 2796-2882, ide-spec 2.24-2.26).
+
+The fields come from the parameter database, grouped as the manual groups them. A typed value is checked at
+once against the parameter's range and options: a bad one is refused with the reason (the field turns red and
+the message line says why) and never sent; a good one is marked as changed (bold on yellow) until written. OK
+writes the changed values to the controller; choosing another controller first writes the pending values to the
+one being left, then reads the new one ("the changed values are written to the previous controller and the new
+controller's values are read", DG 2816-2818). F1 on a field shows the parameter's help."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from PySide6.QtGui import QKeySequence, QShortcut
+from PySide6.QtWidgets import (
+    QComboBox,
+    QDialog,
+    QDialogButtonBox,
+    QFormLayout,
+    QHBoxLayout,
+    QLabel,
+    QLineEdit,
+    QListWidget,
+    QScrollArea,
+    QStackedWidget,
+    QVBoxLayout,
+    QWidget,
+)
+
+from motiontool.comms.protocol import LinkError
+from motiontool.paramdb import Parameter, ParameterError, database
+
+CHANGED = "font-weight: bold; background: #fff3b0;"
+REFUSED = "background: #ffc8c8;"
+_MARKER = {"SYNCFAULT", "SYNCREADY"}   # marker counts: with the marker parameters (SYNCM…)
+
+
+def _marker(p: Parameter) -> bool:
+    return bool(p.name) and (p.name.startswith("SYNCM") or p.name in _MARKER)
+
+
+# the manual's groups (DG 2838-2864); 33-1* holds both the synchronization and the marker parameters (I13)
+AXIS_GROUPS: tuple[tuple[str, Callable[[Parameter], bool]], ...] = (
+    ("Basic Settings", lambda p: p.number.startswith("32-8")),
+    ("Encoder Data", lambda p: p.number[:4] in ("32-0", "32-1", "32-3", "32-4", "32-5")),
+    ("Predefined I/Os", lambda p: p.number[:4] in ("33-4", "33-5", "33-6", "33-7")),
+    ("Homing", lambda p: p.number.startswith("33-0")),
+    ("Synchronization", lambda p: p.number[:4] in ("33-1", "33-2", "33-3") and not _marker(p)),
+    ("Sync Marker", lambda p: p.number[:4] in ("33-1", "33-2", "33-3") and _marker(p)),
+    ("Position Regulation", lambda p: p.number[:4] in ("32-6", "32-7")),
+)
+# "the functions of the inputs and outputs and the standard parameters … 33-5* and 33-8*" (DG 2808), and the
+# CAN and RS-485 settings the manual's dialog shows (CAN ID [100])
+GLOBAL_GROUPS: tuple[tuple[str, Callable[[Parameter], bool]], ...] = (
+    ("Inputs and outputs", lambda p: p.number[:4] in ("33-5", "33-6", "33-7")),
+    ("Global", lambda p: p.number.startswith("33-8")),
+    ("CAN bus and RS-485", lambda p: p.number.startswith("33-9")),
+)
+
+
+def grouped(groups) -> list[tuple[str, list[Parameter]]]:
+    return [(title, [p for p in database() if not p.read_only and keep(p)]) for title, keep in groups]
+
+
+def interface_controllers(w) -> list[int]:
+    """The controller IDs of the window's interface."""
+    iface = w.controllers.interface(key=w.connection.interface_key)
+    return list(iface.found) or [w.bridge.controller_id]
+
+
+def controller_link(w, controller_id: int):
+    return w.controllers.link(controller_id, interface=w.connection.interface_key)
+
+
+def _text(p: Parameter, value) -> str:
+    if isinstance(value, float):
+        return f"{value:.6f}".rstrip("0").rstrip(".") if value != int(value) else f"{value:.1f}"
+    return str(value)
+
+
+class ParameterField:
+    """One parameter's input: a combo box for an enumeration, else a line edit; knows its state."""
+
+    def __init__(self, parameter: Parameter, on_change: Callable[[ParameterField], None]) -> None:
+        self.p = parameter
+        self.current = None           # the controller's value
+        self.pending = None           # a checked new value, not yet written
+        self.refused: str | None = None
+        self._on_change = on_change
+        self._loading = False
+        tip = (f"{parameter.label}: {parameter.description}\nRange {_text(parameter, parameter.minimum)} .. "
+               f"{_text(parameter, parameter.maximum)} {parameter.unit}, default "
+               f"{_text(parameter, parameter.default)}\nF1: help")
+        if parameter.options:
+            self.widget = QComboBox()
+            for number, text in parameter.options.items():
+                self.widget.addItem(f"{number}: {text}", number)
+            self.widget.currentIndexChanged.connect(lambda _i: self._typed())
+        else:
+            self.widget = QLineEdit()
+            self.widget.setMaximumWidth(160)
+            self.widget.editingFinished.connect(self._typed)
+        self.widget.setToolTip(tip)
+        self.widget.setProperty("parameter", parameter.number)
+
+    def text(self) -> str:
+        if isinstance(self.widget, QComboBox):
+            return str(self.widget.currentData())
+        return self.widget.text().strip()
+
+    def load(self, value) -> None:
+        """Show the controller's value (forgets what was pending)."""
+        self._loading = True
+        self.current, self.pending, self.refused = value, None, None
+        if isinstance(self.widget, QComboBox):
+            index = self.widget.findData(value)
+            if index < 0:  # a value outside the options: shown, not offered
+                self.widget.addItem(f"{value}: (not an option)", value)
+                index = self.widget.count() - 1
+            self.widget.setCurrentIndex(index)
+        else:
+            self.widget.setText(_text(self.p, value))
+        self.widget.setStyleSheet("")
+        self._loading = False
+
+    def _typed(self) -> None:
+        if self._loading:
+            return
+        try:
+            value = self.p.validate(self.text())
+        except ParameterError as exc:
+            self.pending, self.refused = None, str(exc)
+            self.widget.setStyleSheet(REFUSED)
+        else:
+            self.refused = None
+            self.pending = None if value == self.current else value
+            self.widget.setStyleSheet(CHANGED if self.pending is not None else "")
+        self._on_change(self)
+
+
+class ParametersDialog(QDialog):
+    """The fields of `groups` for one controller at a time; with several groups a list chooses the page."""
+
+    def __init__(self, w, title: str, groups, *, paged: bool) -> None:
+        super().__init__(w)
+        self.w = w
+        self.setWindowTitle(title)
+        self.fields: dict[str, ParameterField] = {}
+        self.controller = QComboBox()
+        for cid in interface_controllers(w):
+            self.controller.addItem(f"Controller {cid}", cid)
+        self.controller.setCurrentIndex(max(0, self.controller.findData(w.bridge.controller_id)))
+        self._shown_controller = self.controller.currentData()
+        self.controller.currentIndexChanged.connect(lambda _i: self._controller_changed())
+        self.message = QLabel("")
+        self.message.setWordWrap(True)
+        self.pages = QStackedWidget()
+        self.groups = QListWidget()
+        single = QWidget()
+        single_form = QFormLayout(single)
+        for title_, parameters in grouped(groups):
+            if paged:
+                page = QWidget()
+                form = QFormLayout(page)
+                self.groups.addItem(title_)
+                self.pages.addWidget(_scroll(page))
+            else:  # one page with a heading per group (the manual's Global dialog)
+                form = single_form
+                heading = QLabel(title_)
+                heading.setStyleSheet("font-weight: bold; margin-top: 6px;")
+                form.addRow(heading)
+            for p in parameters:
+                field = self.fields[p.number] = ParameterField(p, self._field_changed)
+                label = QLabel(f"{p.description[:60]} [{p.label}]" + (f" ({p.unit})" if p.unit else ""))
+                label.setToolTip(p.description)
+                form.addRow(label, field.widget)
+        if not paged:
+            self.pages.addWidget(_scroll(single))
+        self.groups.currentRowChanged.connect(self.pages.setCurrentIndex)
+        buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Ok | QDialogButtonBox.StandardButton.Cancel)
+        buttons.accepted.connect(self.accept)
+        buttons.rejected.connect(self.reject)
+        top = QHBoxLayout()
+        top.addWidget(QLabel("Controller:"))
+        top.addWidget(self.controller, 1)
+        middle = QHBoxLayout()
+        if paged:
+            self.groups.setMaximumWidth(170)
+            middle.addWidget(self.groups)
+        middle.addWidget(self.pages, 1)
+        layout = QVBoxLayout(self)
+        layout.addLayout(top)
+        layout.addLayout(middle, 1)
+        layout.addWidget(self.message)
+        layout.addWidget(buttons)
+        QShortcut(QKeySequence("F1"), self, self._help)
+        self.resize(760, 560)
+        if paged:
+            self.groups.setCurrentRow(0)
+        self.read()
+
+    # --- reading and writing ---------------------------------------------------------------------------------
+    def link(self):
+        return controller_link(self.w, self._shown_controller)
+
+    def read(self) -> bool:
+        try:
+            link = self.link()
+            for number, field in self.fields.items():
+                field.load(field.p.from_raw(link.read_parameter(number)))
+        except (LinkError, ValueError) as exc:
+            self.say(f"Controller {self._shown_controller}: {exc}", error=True)
+            return False
+        self.say("")
+        return True
+
+    def pending(self) -> dict[str, object]:
+        return {n: f.pending for n, f in self.fields.items() if f.pending is not None}
+
+    def refused(self) -> list[str]:
+        return [f.refused for f in self.fields.values() if f.refused]
+
+    def write(self) -> bool:
+        """Write the pending values; refused fields keep the dialog open with their reasons."""
+        if self.refused():
+            self.say("Not written: " + "; ".join(self.refused()), error=True)
+            return False
+        link = self.link()
+        written = []
+        try:
+            for number, value in self.pending().items():
+                field = self.fields[number]
+                link.write_parameter(number, field.p.to_raw(value))
+                field.load(value)
+                written.append(field.p.label)
+        except (LinkError, ValueError) as exc:
+            self.say(f"Controller {self._shown_controller}: {exc}", error=True)
+            return False
+        if written:
+            self.w.messages.ide(f"Controller {self._shown_controller}: wrote {', '.join(written)}")
+        return True
+
+    def accept(self) -> None:
+        if self.write():
+            super().accept()
+
+    def _controller_changed(self) -> None:
+        """Another controller: the pending values go to the one left, then the new one's are read."""
+        if not self.write():
+            self.controller.blockSignals(True)
+            self.controller.setCurrentIndex(self.controller.findData(self._shown_controller))
+            self.controller.blockSignals(False)
+            return
+        self._shown_controller = self.controller.currentData()
+        self.read()
+
+    # --- feedback ----------------------------------------------------------------------------------------------
+    def say(self, text: str, *, error: bool = False) -> None:
+        self.message.setText(text)
+        self.message.setStyleSheet("color: #a00000;" if error else "")
+
+    def _field_changed(self, field: ParameterField) -> None:
+        if field.refused:
+            self.say(f"Refused: {field.refused}", error=True)
+        else:
+            changed = len(self.pending())
+            self.say(f"{changed} changed value(s): OK writes them" if changed else "")
+
+    def _help(self) -> None:
+        number = self.focusWidget().property("parameter") if self.focusWidget() is not None else None
+        from motiontool.ui.help import show_help
+
+        show_help(self.w, parameter=number)
+
+
+def _scroll(widget: QWidget) -> QScrollArea:
+    area = QScrollArea()
+    area.setWidgetResizable(True)
+    area.setWidget(widget)
+    return area
+
+
+class NameDialog(QDialog):
+    """Parameters → Name (DG 2870-2882): at most 8 characters, upper case."""
+
+    def __init__(self, w) -> None:
+        super().__init__(w)
+        self.w = w
+        self.setWindowTitle("Controller name")
+        self.controller = QComboBox()
+        for cid in interface_controllers(w):
+            self.controller.addItem(f"Controller {cid}", cid)
+        self.controller.setCurrentIndex(max(0, self.controller.findData(w.bridge.controller_id)))
+        self._shown = self.controller.currentData()
+        self.controller.currentIndexChanged.connect(lambda _i: self._controller_changed())
+        self.name = QLineEdit()
+        self.name.setMaxLength(32)  # longer input is refused with the reason rather than cut silently
+        self.message = QLabel("")
+        form = QFormLayout(self)
+        form.addRow("Controller:", self.controller)
+        form.addRow("Name (8 characters, upper case):", self.name)
+        form.addRow(self.message)
+        buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Ok | QDialogButtonBox.StandardButton.Cancel)
+        buttons.accepted.connect(self.accept)
+        buttons.rejected.connect(self.reject)
+        form.addRow(buttons)
+        self._loaded = ""
+        self.read()
+
+    def read(self) -> None:
+        try:
+            self._loaded = controller_link(self.w, self._shown).call("identify").get("name", "")
+        except (LinkError, ValueError) as exc:
+            self.message.setText(str(exc))
+            self._loaded = ""
+        self.name.setText(self._loaded)
+
+    @staticmethod
+    def problem(name: str) -> str | None:
+        reasons = []
+        if len(name) > 8:
+            reasons.append(f"{len(name)} characters, at most 8")
+        if name != name.upper():
+            reasons.append("not upper case")
+        return f"{name!r}: " + " and ".join(reasons) if reasons else None
+
+    def write(self) -> bool:
+        name = self.name.text().strip()
+        if name == self._loaded:
+            return True
+        refused = self.problem(name)
+        if refused is None:
+            try:
+                controller_link(self.w, self._shown).call("set_name", name=name)
+            except (LinkError, ValueError) as exc:
+                refused = str(exc)
+        if refused:
+            self.message.setText(f"Refused: {refused}")
+            self.message.setStyleSheet("color: #a00000;")
+            self.name.setStyleSheet(REFUSED)
+            return False
+        self.w.messages.ide(f"Controller {self._shown}: named {name}")
+        self._loaded = name
+        return True
+
+    def accept(self) -> None:
+        if self.write():
+            super().accept()
+
+    def _controller_changed(self) -> None:
+        if not self.write():
+            self.controller.blockSignals(True)
+            self.controller.setCurrentIndex(self.controller.findData(self._shown))
+            self.controller.blockSignals(False)
+            return
+        self._shown = self.controller.currentData()
+        self.read()
+
+
+def show_global(w) -> None:
+    if w.development.connect_default():
+        ParametersDialog(w, "Global Parameters", GLOBAL_GROUPS, paged=False).exec()
+
+
+def show_axis(w) -> None:
+    if w.development.connect_default():
+        ParametersDialog(w, "Axis Parameters", AXIS_GROUPS, paged=True).exec()
+
+
+def show_name(w) -> None:
+    if w.development.connect_default():
+        NameDialog(w).exec()
