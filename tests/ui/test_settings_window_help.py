@@ -231,3 +231,19 @@ def test_the_controllers_messages_show_in_the_communication_window(window, qtbot
                     timeout=10000)
     line = next(t for t in window.messages.toPlainText().splitlines() if "POSA waits" in t)
     assert "1" in line.split("POSA")[0]   # the controller's ID precedes the text
+
+
+def test_the_chosen_language_translates_qts_texts_at_the_next_start(qapp, tmp_path):
+    """The language is installed when motiontool starts: Qt's own texts (here a standard button) are German."""
+    from PySide6.QtCore import QCoreApplication, QSettings
+
+    from motiontool.ui.language import install
+
+    settings = QSettings(str(tmp_path / "settings.ini"), QSettings.Format.IniFormat)
+    settings.setValue(SETTING, "de")
+    translator = install(qapp, settings)
+    try:
+        assert translator is not None
+        assert QCoreApplication.translate("QPlatformTheme", "Cancel") == "Abbrechen"
+    finally:
+        qapp.removeTranslator(translator)

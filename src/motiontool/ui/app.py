@@ -47,6 +47,11 @@ def run_gui(open_file: Path | None = None, screenshot: Path | None = None) -> in
         window = MainWindow(settings=QSettings(f"{scratch.name}/settings.ini", QSettings.Format.IniFormat))
         window.ask_to_save = False
     else:
+        from PySide6.QtCore import QSettings
+
+        from motiontool.ui.language import install
+
+        app.translator = install(app, QSettings())  # Settings → Language, from this start on (DG 3113-3115)
         window = MainWindow()
     if open_file is not None:
         try:
