@@ -96,6 +96,7 @@ class ParameterField:
             for number, text in parameter.options.items():
                 self.widget.addItem(f"{number}: {text}", number)
             self.widget.currentIndexChanged.connect(lambda _i: self._typed())
+            self.widget.setMaximumWidth(280)  # an option's long text must not push the field out of view
         else:
             self.widget = QLineEdit()
             self.widget.setMaximumWidth(160)
@@ -194,7 +195,7 @@ class ParametersDialog(QDialog):
         layout.addWidget(self.message)
         layout.addWidget(buttons)
         QShortcut(QKeySequence("F1"), self, self._help)
-        self.resize(760, 560)
+        self.resize(1000, 600)  # the long names of the manual and the value fields side by side
         if paged:
             self.groups.setCurrentRow(0)
         self.read()
