@@ -69,13 +69,14 @@ def drive_process(*args: str, listen: str = "fc:socket://127.0.0.1:0"):
 class DrivePool:
     """Fresh drives, one started ahead while the previous one is in use (a drive takes a second to start)."""
 
-    def __init__(self, *args: str):
+    def __init__(self, *args: str, listen: str = "fc:socket://127.0.0.1:0"):
         self.args = args
+        self.listen = listen
         self.spare: DriveProcess | None = None
 
     def take(self) -> DriveProcess:
-        drive = self.spare or DriveProcess(*self.args)
-        self.spare = DriveProcess(*self.args)
+        drive = self.spare or DriveProcess(*self.args, listen=self.listen)
+        self.spare = DriveProcess(*self.args, listen=self.listen)
         return drive
 
     def close(self) -> None:

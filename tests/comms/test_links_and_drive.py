@@ -260,7 +260,8 @@ def test_drive_command_refuses_bad_set_ups_naming_them(tmp_path):
     for options, expected in (
             (DriveOptions(["fc:socket://127.0.0.1:0"], [f"1:{bad}"]), "bad.m:1:1: error: POSA needs more arguments"),
             (DriveOptions(["fc:udp://x"]), "fc listens on socket://HOST:PORT or on pty"),
-            (DriveOptions(["modbus:x"]), "unknown scheme 'modbus' (known: fc:socket://HOST:PORT | fc:pty"),
+            (DriveOptions(["modbus:x"]), "unknown scheme 'modbus' (known: canopen:slcan:socket://127.0.0.1:PORT, "
+                                         "fc:socket://HOST:PORT | fc:pty"),
             (DriveOptions(["fc:socket://127.0.0.1:0"], ["40"]), "node id 40 is outside 1..32"),
             (DriveOptions(["fc:socket://127.0.0.1:0"], ["1", "1"]), "--node 1 is given twice"),
             (DriveOptions(["fc:socket://127.0.0.1:0#3"]), "a listener serves every node"),

@@ -179,3 +179,15 @@ def test_motiontool_run_with_several_nodes_shares_one_can_bus(tmp_path):
                           capture_output=True, text=True, timeout=120, cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
     assert sorted(proc.stdout.splitlines()) == ["1: tx1 = 1", "2: CANIN 0: 21 41 at 22"]
+
+
+def test_a_new_cannr_takes_effect_at_the_next_power_up():
+    """Decision K118: the controller keeps the node id it had when it was switched on (DG 10815-10819: CANNR
+    "Defines the CAN-Node ID"; DG 10849-10853: a new CANBAUD needs SAVE GLBPARS and a restart)."""
+    from motiontool.comms.service import ControllerService
+
+    sim = bus({2: "SET CANNR 9\nSAVE GLBPARS\n"})
+    sim.run_for(10)
+    assert sim[2].params.get("CANNR") == 9 and sim[2].can.node_id == 2
+    ControllerService(sim[2]).op_power_on()
+    assert sim[2].can.node_id == 9

@@ -220,6 +220,7 @@ class ControllerService:
             self.wipe_at_power_on = False
             self.op_reset("all")
             self.name = ""
+        c.can.power_on()       # the CAN interface boots up again (kernel/canport.py)
         self.store.power_on(c)
         self._set_stack_size(self.store.running)
 

@@ -60,6 +60,7 @@ class Pdo:
     entries: dict[int, MapEntry] = field(default_factory=dict)   # rank (1..) → entry
     count: int = 0                       # sub 0 of the mapping object: ranks 1..count are in use
     used: bool = False                   # a PDO[] write made this TxPDO carry data
+    layout: tuple | None = None          # ([(bit offset, bits, reader)], length): see PdoEngine.compose
     last_sent: int | None = None
     last_data: bytes | None = None
     pending: bool = False                # a change waits for the inhibit time
@@ -124,8 +125,8 @@ class PdoEngine:
     def write_element(self, index: int, value: int) -> None:
         number, offset = self._element(index)
         self.arrays[number][offset:offset + 4] = (int(value) & 0xFFFFFFFF).to_bytes(4, "little")
-        if number <= CAN_PDOS:
-            self.tx[number].used = True
+        if number <= CAN_PDOS and not self.tx[number].used:
+            self.tx[number].used, self.tx[number].layout = True, None
             self.active = True
 
     # --- LINKPDO / LINKSDO -------------------------------------------------------------------------------------
@@ -148,6 +149,7 @@ class PdoEngine:
         pdo.entries = entries
         pdo.count = max(pdo.count, rank)
         pdo.valid = True
+        pdo.layout = None
         self.active = True
 
     # --- ticks ---------------------------------------------------------------------------------------------
@@ -175,15 +177,17 @@ class PdoEngine:
         self.active = busy
 
     def compose(self, pdo: Pdo) -> bytes:
-        """The TxPDO's bytes: its PDO array with the mapped values written in (little-endian, CR 3389-3397)."""
+        """The TxPDO's bytes: its PDO array with the mapped values written in (little-endian, CR 3389-3397).
+        The layout (offsets and readers of the mapped objects) is worked out once per mapping: a Free Run sends
+        four TxPDOs every millisecond."""
+        if pdo.layout is None:
+            items = [(offset, entry.bits, _reader(entry.target)) for offset, entry in pdo.mapped() if not entry.dummy]
+            pdo.layout = (items, PDO_BYTES if pdo.used else min(PDO_BYTES, (pdo.mapped_bits() + 7) // 8))
+        items, length = pdo.layout
         array = self.arrays[pdo.number]
         ctl = self.port.controller
-        for offset, entry in pdo.mapped():
-            if entry.dummy:
-                continue
-            value = _read_target(ctl, entry.target)
-            _put_bits(array, offset, entry.bits, value)
-        length = PDO_BYTES if pdo.used else min(PDO_BYTES, (pdo.mapped_bits() + 7) // 8)
+        for offset, bits, read in items:
+            _put_bits(array, offset, bits, read(ctl))
         return bytes(array[:length])
 
     def _send(self, pdo: Pdo, data: bytes, now: int) -> None:
@@ -266,6 +270,24 @@ def _signed(target: int, bits: int) -> bool:
     return signed and 8 * size == bits
 
 
+def _reader(target: int):
+    """A function controller → value of SYSVAR[target], resolved once (an object's getter, else read_sysvar)."""
+    where = objdict.split_sysvar(target)
+    try:
+        get = objdict.find(*where).get if where is not None else None
+    except objdict.ObjectError:
+        get = None
+    if get is None:
+        return lambda ctl: _read_target(ctl, target)
+
+    def read(ctl) -> int:
+        try:
+            return int(get(ctl))
+        except (ControllerError, objdict.ObjectError, TypeError, ValueError):
+            return 0
+    return read
+
+
 def _read_target(ctl, target: int) -> int:
     from motiontool.kernel.sysvars import read_sysvar
 
@@ -331,6 +353,7 @@ def accessor(tx: bool, number: int, what: str, rank: int = 0):
         def put(c, value, source):
             value = int(value) & 0xFFFFFFFF
             index, sub, bits = value >> 16, (value >> 8) & 0xFF, value & 0xFF
+            pdo(c).layout = None
             if value == 0:
                 pdo(c).entries.pop(rank, None)
                 return
@@ -351,7 +374,7 @@ def accessor(tx: bool, number: int, what: str, rank: int = 0):
                 raise objdict.ObjectError(objdict.ABORT_VALUE, f"{value} mapped objects: 0..8")
             if sum(p.entries[r].bits for r in range(1, value + 1) if r in p.entries) > 8 * PDO_BYTES:
                 raise objdict.ObjectError(objdict.ABORT_PDO_LENGTH, "the mapped objects exceed 8 bytes")
-            p.count = value
+            p.count, p.layout = value, None
             c.can.pdo.active = True
         return (lambda c: pdo(c).count), put_count
     attribute = {"type": "type", "inhibit": "inhibit", "event": "event"}[what]

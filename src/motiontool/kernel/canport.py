@@ -55,6 +55,7 @@ class CanPort:
         self.pdo = PdoEngine(self)
         self.sdo = SdoClient(self)
         self.server = SdoServer(self)
+        self._node_id: int | None = None
         self.nmt_state = BOOTUP
         self.heartbeat_ms = 0                 # 0x1017
         self._last_heartbeat = 0
@@ -84,7 +85,20 @@ class CanPort:
     # --- identity and sending ---------------------------------------------------------------------------
     @property
     def node_id(self) -> int:
-        return self.controller.params.values.get(CANNR, 127)
+        """CANNR as it was when the controller was switched on: a changed 33-90 takes effect at the next power-up
+        (decision K118; DG 10815-10819, like CANBAUD "restart the device")."""
+        if self._node_id is None:
+            self._node_id = self.controller.params.values.get(CANNR, 127)
+        return self._node_id
+
+    def power_on(self) -> None:
+        """Switched off and on: boot-up again with the current CANNR; PDOs, heartbeat and the program's objects
+        start from their defaults."""
+        self._node_id = None
+        self.nmt_state, self.heartbeat_ms, self.busy = BOOTUP, 0, True
+        self.pdo = PdoEngine(self)
+        self.sdo.channels.clear()
+        self.program_started()
 
     def attach(self, bus: CanBus) -> None:
         """Join a shared bus (a Simulation's): frames then travel between the controllers on it."""

@@ -1,0 +1,333 @@
+"""CanopenLink: a controller over CANopen, on python-canopen's RemoteNode over any python-can interface
+(issue 15 item 2). ``--link canopen:INTERFACE:CHANNEL[#NODE][,OPTION=VALUE…]``, e.g.
+``canopen:slcan:socket://127.0.0.1:4002#1``, ``canopen:socketcan:can0#3``, ``canopen:pcan:PCAN_USBBUS1#1``.
+
+- parameters by expedited SDO on their objects (0x2000 + number, docs/protocols/canopen.md);
+- every other request of the link protocol as a message through the DOMAIN 0x5F00 (write, then read the answer;
+  segmented SDO), events by polling as every wire link does (comms/remote.py);
+- Free Run (`stream`) as TxPDOs (freerun.py);
+- NMT start and a heartbeat: the link sets the node's producer time (0x1017) and reports "lost connection" when no
+  heartbeat came for the consumer time, and that the connection is back when heartbeats return (after a boot-up
+  the drive is set up again); a transport that broke is opened again by itself.
+
+Options: ``heartbeat=MS`` (producer time, default 100), ``consumer=MS`` (default 1000),
+``timeout=S`` (SDO answer timeout, default 1), ``bitrate=BIT/S``, ``eds=PATH`` (default the shipped EDS).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import struct
+import threading
+import time
+from typing import Any
+
+import can
+import canopen
+from canopen.sdo import SdoAbortedError, SdoCommunicationError
+
+from motiontool.comms.canopen import eds, objects
+from motiontool.comms.canopen.freerun import PdoStream
+from motiontool.comms.canopen.slcan import SlcanSocketBus
+from motiontool.comms.links import LinkSpec, register_link_scheme
+from motiontool.comms.protocol import ConnectionLost, LinkError, Request
+from motiontool.comms.remote import RemoteLink
+from motiontool.paramdb import ParameterError, database
+
+PARAMETER_BASE = 0x2000
+MESSAGE_TIMEOUT_S = 10.0   # the answer to a link message (it is carried out before the answer)
+CONSUMER_MS = 1000   # default heartbeat consumer time: a loaded machine can hold a drive up for a few hundred ms
+ABORT_ERRORS = {0x06010002: 112, 0x06020000: 112, 0x06090030: 183, 0x06090031: 183, 0x06090032: 183}
+OPTIONS = {"heartbeat", "consumer", "timeout", "bitrate", "eds", "client"}
+
+
+def open_bus(interface: str, channel: str, bitrate: int | None = None, client: str = "fast") -> can.BusABC:
+    """A python-can bus; slcan over TCP goes through SlcanSocketBus (the same protocol, buffered reads, decision
+    N13) unless `client` is "python-can"."""
+    if interface == "slcan" and channel.startswith("socket://") and client != "python-can":
+        return SlcanSocketBus(channel)
+    kwargs: dict[str, Any] = {"interface": interface, "channel": channel}
+    if bitrate:
+        kwargs["bitrate"] = bitrate
+    if interface == "slcan":
+        kwargs["sleep_after_open"] = 0 if channel.startswith("socket://") else 2
+    return can.Bus(**kwargs)
+
+
+class CanopenLink(RemoteLink):
+    kind = "canopen"
+
+    def __init__(self, interface: str, channel: str, node: int = 1, *, heartbeat_ms: int = 100,
+                 consumer_ms: int | None = None, sdo_timeout_s: float = 1.0, bitrate: int | None = None,
+                 eds_path: str | None = None, client: str = "fast"):
+        if not 1 <= node <= 127:
+            raise LinkError(f"CANopen node id {node}: 1..127")
+        self.interface, self.channel, self.node_id = interface, channel, node
+        self.bitrate, self.client = bitrate, client
+        self.heartbeat_ms = heartbeat_ms
+        self.consumer_ms = consumer_ms or max(CONSUMER_MS, 5 * heartbeat_ms)
+        self.sdo_timeout_s = sdo_timeout_s
+        self.od = canopen.import_od(str(eds_path or eds.eds_path()), node)
+        self._sdo_lock = threading.RLock()
+        self._last_beat: float | None = None
+        self._state: int | None = None
+        self._rebooted = False
+        self._blocks = True              # until the node shows it does not serve block transfers
+        self._stream_request: tuple[list[str], int] | None = None
+        super().__init__(self._exchange, f"CANopen node {node} on {interface}:{channel}")
+        self._connect()
+        self.stream = PdoStream(self.remote.sdo, self.network, node, self.od, self._publish)
+        self._configure()
+        self._watch = threading.Thread(target=self._watchdog, name="canopen-heartbeat", daemon=True)
+        self._watch.start()
+
+    # --- the transport ----------------------------------------------------------------------------------
+    def _connect(self) -> None:
+        try:
+            bus = open_bus(self.interface, self.channel, self.bitrate, self.client)
+        except (can.CanError, OSError, ValueError) as exc:
+            raise ConnectionLost(f"cannot open {self.interface}:{self.channel}: {exc}") from None
+        self.network = canopen.Network(bus)
+        self.network.notifier = can.Notifier(bus, self.network.listeners, 0.5)
+        self.remote = canopen.RemoteNode(self.node_id, self.od)
+        self.remote.sdo.RESPONSE_TIMEOUT = self.sdo_timeout_s
+        self.network.add_node(self.remote)
+        self.remote.nmt.add_heartbeat_callback(self._on_heartbeat)
+        if hasattr(self, "stream"):      # a new transport: the link sets the node up again when it answers
+            self.stream.sdo, self.stream.network = self.remote.sdo, self.network
+            self._rebooted = True
+
+    def _disconnect(self) -> None:
+        with contextlib.suppress(Exception):
+            self.network.notifier.stop(1.0)
+        with contextlib.suppress(Exception):
+            self.network.bus.shutdown()
+
+    def _configure(self) -> None:
+        """Heartbeat producer time and NMT start (the node may already be operational)."""
+        with self._sdo_lock:
+            self._sdo(lambda sdo: sdo.download(0x1017, 0, self.heartbeat_ms.to_bytes(2, "little")))
+            self.network.send_message(0, bytes([0x01, self.node_id]))
+
+    def _sdo(self, action):
+        """Run an SDO action; a missing answer is ConnectionLost, an abort a LinkError with the controller's
+        error number where there is one."""
+        if self._lost:
+            raise ConnectionLost(f"no heartbeat from CANopen node {self.node_id}")
+        with self._sdo_lock:
+            try:
+                return action(self.remote.sdo)
+            except SdoCommunicationError as exc:
+                raise ConnectionLost(f"CANopen node {self.node_id} does not answer: {exc}") from None
+            except SdoAbortedError as exc:
+                raise LinkError(f"CANopen node {self.node_id} refused: {exc}", ABORT_ERRORS.get(exc.code, 0)) \
+                    from None
+            except (can.CanError, OSError) as exc:
+                raise ConnectionLost(f"CAN interface {self.interface}:{self.channel}: {exc}") from None
+
+    def _exchange(self, message: bytes) -> bytes:
+        def transfer(sdo):
+            # the node answers a message when it has carried it out (an `advance` of a virtual clock computes
+            # first): wait longer than for a parameter; a silent node is still seen by the heartbeat at once
+            sdo.RESPONSE_TIMEOUT = max(self.sdo_timeout_s, MESSAGE_TIMEOUT_S)
+            try:
+                self._write_domain(sdo, objects.LINK_MESSAGE, message)
+                return self._read_domain(sdo, objects.LINK_MESSAGE)
+            finally:
+                sdo.RESPONSE_TIMEOUT = self.sdo_timeout_s
+        return self._sdo(transfer)
+
+    # DOMAIN objects by block transfer where the node serves it (N14), else segmented
+    def _write_domain(self, sdo, index: int, data: bytes) -> None:
+        if self._blocks and len(data) > 4:
+            try:
+                with sdo.open(index, 0, "wb", buffering=0, size=len(data), block_transfer=True) as raw:
+                    view = memoryview(data)
+                    while view:
+                        view = view[raw.write(view[:7]) or 7:]
+                return
+            except (SdoAbortedError, SdoCommunicationError) as exc:
+                if not _no_blocks(exc):
+                    raise
+                self._blocks = False
+        sdo.download(index, 0, data)
+
+    def _read_domain(self, sdo, index: int) -> bytes:
+        if self._blocks:
+            try:
+                with sdo.open(index, 0, "rb", buffering=0, block_transfer=True) as raw:
+                    return b"".join(iter(lambda: raw.read(7), b""))
+            except (SdoAbortedError, SdoCommunicationError) as exc:
+                if not _no_blocks(exc):
+                    raise
+                self._blocks = False
+        return sdo.upload(index, 0)
+
+    # --- requests -----------------------------------------------------------------------------------------
+    def request(self, request: Request) -> Any:
+        if self._closed.is_set():
+            raise ConnectionLost("the link is closed")
+        op, args = request.op, request.args
+        if op == "read_parameter":
+            return self._read_parameter(args["key"])
+        if op == "write_parameter":
+            return self._write_parameter(args["key"], args["value"])
+        if op == "stream":
+            return self._stream(list(args.get("signals") or []), int(args.get("interval_ms", 1)))
+        return super().request(request)
+
+    def _parameter(self, key):
+        try:
+            p = database().get(key)
+        except ParameterError:
+            raise LinkError(f"unknown parameter {key}", 112) from None
+        return p, self.od[PARAMETER_BASE + p.index]
+
+    def _read_parameter(self, key) -> int:
+        p, var = self._parameter(key)
+        return var.decode_raw(self._sdo(lambda sdo: sdo.upload(var.index, 0)))
+
+    def _write_parameter(self, key, value) -> None:
+        p, var = self._parameter(key)
+        try:
+            data = var.encode_raw(int(value))
+        except (struct.error, OverflowError, ValueError):
+            data = None
+        try:
+            if data is None:
+                raise LinkError(f"{p.label}: {value} does not fit the parameter's type", 183)
+            self._sdo(lambda sdo: sdo.download(var.index, 0, data))
+        except LinkError as exc:
+            if exc.number != 183:
+                raise
+            try:    # the reason in the words the controller uses (ParameterStore.set validates the same way)
+                p.validate(value * 10 ** p.conversion_index if p.conversion_index else value)
+            except ParameterError as reason:
+                raise LinkError(str(reason), 183) from None
+            raise
+
+    def read_object(self, index: int, sub: int = 0):
+        """One object by SDO, decoded as the EDS says (an integer, a text or bytes)."""
+        var = self.od[index] if sub == 0 and not hasattr(self.od[index], "subindices") else self.od[index][sub]
+        return var.decode_raw(self._sdo(lambda sdo: sdo.upload(index, sub)))
+
+    def _stream(self, signals: list[str], interval_ms: int) -> None:
+        """Free Run over PDOs; an empty list stops it."""
+        self._stream_request = (signals, interval_ms) if signals else None
+        with self._sdo_lock:
+            try:
+                if signals:
+                    self.stream.start(signals, interval_ms)
+                else:
+                    self.stream.stop()
+            except SdoCommunicationError as exc:
+                raise ConnectionLost(f"CANopen node {self.node_id} does not answer: {exc}") from None
+            except SdoAbortedError as exc:
+                raise LinkError(f"CANopen node {self.node_id} refused the PDO set-up: {exc}") from None
+
+    # --- heartbeat consumer --------------------------------------------------------------------------------
+    def _on_heartbeat(self, state: int) -> None:
+        known = self._last_beat is not None
+        self._last_beat, self._state = time.monotonic(), state
+        if state == 0 and known:       # a boot-up of a node we knew: the drive lost what the link set up
+            self._rebooted = True
+            if not self._lost:
+                threading.Thread(target=self._restore, args=("the controller started again",), daemon=True).start()
+
+    def _watchdog(self) -> None:
+        while not self._closed.wait(0.05):
+            if self._virtual_clock():
+                continue
+            beat = self._last_beat
+            silent = beat is None or time.monotonic() - beat > self.consumer_ms / 1000
+            if not self._lost and silent and beat is not None:
+                self._set_connection(lost=True, text=f"Lost connection: no heartbeat from CANopen node "
+                                                     f"{self.node_id} for {self.consumer_ms} ms")
+            elif self._lost and not silent:
+                self._restore("heartbeats again")
+            elif self._lost and self.network.notifier.exception is not None:
+                self._reopen()
+
+    def _virtual_clock(self) -> bool:
+        return bool(self._identity) and self._identity.get("clock") == "virtual"
+
+    def _reopen(self) -> None:
+        """The transport broke (e.g. the slcan server went away): open it again, once a second."""
+        time.sleep(1.0)
+        self._disconnect()
+        with contextlib.suppress(ConnectionLost):
+            self._connect()
+
+    def _restore(self, why: str) -> None:
+        """Heartbeats again: after a boot-up or a new transport set the node up again (heartbeat, NMT, the Free Run
+        PDOs); after a pause (a stopped process) it still has all that. Then say so."""
+        rebooted, self._rebooted = self._rebooted, False
+        lost, self._lost = self._lost, False      # the set-up below talks to the node
+        try:
+            if rebooted:
+                self._configure()
+                if self._stream_request is not None:
+                    self._stream(*self._stream_request)
+        except LinkError:
+            self._lost, self._rebooted = lost, rebooted
+            return
+        self._lost = lost
+        self._set_connection(lost=False, text=f"Connection to CANopen node {self.node_id} restored ({why})")
+
+    def close(self) -> None:
+        if not self._closed.is_set() and not self._lost and self.stream.running:
+            with contextlib.suppress(LinkError):
+                self._stream([], 1)
+        super().close()
+        self._watch.join(timeout=2.0)
+        self._disconnect()
+
+
+def _no_blocks(exc: Exception) -> bool:
+    """The node answered a block request as a node without block transfers does."""
+    if isinstance(exc, SdoAbortedError):
+        return exc.code == 0x05040001
+    return "Unexpected response" in str(exc)
+
+
+def scan(interface: str, channel: str, ids=range(1, 128), wait_s: float = 0.3, bitrate: int | None = None
+         ) -> list[int]:
+    """Node ids that answer an SDO request for 0x1000 (device type), in ascending order."""
+    network = canopen.Network(open_bus(interface, channel, bitrate))
+    network.notifier = can.Notifier(network.bus, network.listeners, 0.5)
+    try:
+        found: set[int] = set()
+        for node in ids:
+            network.subscribe(0x580 + node, lambda can_id, data, ts: found.add(can_id - 0x580))
+            network.send_message(0x600 + node, bytes([0x40, 0x00, 0x10, 0x00, 0, 0, 0, 0]))
+        time.sleep(wait_s)
+        return sorted(found)
+    finally:
+        network.notifier.stop(1.0)
+        network.bus.shutdown()
+
+
+def open_canopen(spec: LinkSpec) -> CanopenLink:
+    """`canopen:INTERFACE:CHANNEL[#NODE]` (comms/links.py)."""
+    spec.check_options(OPTIONS)
+    interface, _, channel = spec.target.partition(":")
+    if not interface or not channel:
+        raise LinkError(f"link '{spec.text}': give canopen:INTERFACE:CHANNEL[#NODE], e.g. "
+                        "canopen:slcan:socket://127.0.0.1:4002#1 or canopen:socketcan:can0#3")
+    heartbeat = spec.option("heartbeat", 100, int)
+    return CanopenLink(interface, channel, spec.node or 1, heartbeat_ms=heartbeat,
+                       consumer_ms=spec.option("consumer", None, int), sdo_timeout_s=spec.option("timeout", 1.0,
+                                                                                                    float),
+                       bitrate=spec.option("bitrate", None, int), eds_path=spec.option("eds", None),
+                       client=spec.option("client", "fast"))
+
+
+def scan_spec(spec: LinkSpec, ids) -> list[int]:
+    """The IDE's scan range (comms/links.py scan_controllers): nodes answering an SDO request for 0x1000."""
+    interface, _, channel = spec.target.partition(":")
+    return scan(interface, channel, [n for n in ids if 1 <= n <= 127], bitrate=spec.option("bitrate", None, int))
+
+
+register_link_scheme("canopen", open_canopen, "canopen:INTERFACE:CHANNEL[#NODE]",
+                     "a controller over CANopen on any python-can interface (slcan, socketcan, pcan, virtual …)",
+                     scan=scan_spec)

@@ -1,0 +1,93 @@
+"""One simulated controller as a CANopen slave: a python-canopen LocalNode whose SDO server reads and writes the
+controller's object dictionary (kernel/objdict.py) and the service objects (objects.py) under the drive's lock.
+
+NMT, heartbeat and PDOs are the controller's own (kernel/canport.py, kernel/canpdo.py), reaching the bus through
+the drive's bridge (server.py): the LocalNode here is the SDO server only, so the dictionary has one owner.
+"""
+
+from __future__ import annotations
+
+import base64
+
+import canopen
+from canopen.sdo import SdoAbortedError
+
+from motiontool.comms.canopen import objects
+from motiontool.comms.canopen.sdoblock import BlockSdoServer
+from motiontool.comms.protocol import Request
+from motiontool.kernel import objdict
+
+ABORT_GENERAL = 0x08000000
+
+
+class ControllerNode(canopen.LocalNode):
+    """`drive_node` is the drive's DriveNode (comms/drive/node.py): its `service` (a ControllerService) and its
+    `handle_message(bytes) -> bytes` for the link messages of 0x5F00."""
+
+    def __init__(self, node_id: int, od: canopen.ObjectDictionary, drive, drive_node, eds_text: str):
+        super().__init__(node_id, od)
+        self.sdo = BlockSdoServer(0x600 + node_id, 0x580 + node_id, self)   # before the network subscribes it
+        self.drive = drive
+        self.drive_node = drive_node
+        self.eds = eds_text.encode("utf-8")
+        self._answer = b""           # the answer to the last link message written to 0x5F00
+
+    @property
+    def controller(self):
+        return self.drive_node.service.controller
+
+    # --- SDO server callbacks ----------------------------------------------------------------------------
+    def get_data(self, index: int, subindex: int, check_readable: bool = False) -> bytes:
+        if index in objects.SERVICE_OBJECTS:
+            return self._service_read(index)
+        with self.drive.lock:
+            try:
+                entry = objdict.find(index, subindex)
+                return objdict.encode(objdict.read(self.controller, index, subindex), entry.datatype)
+            except objdict.ObjectError as exc:
+                raise SdoAbortedError(exc.code) from None
+
+    def set_data(self, index: int, subindex: int, data: bytes, check_writable: bool = False) -> None:
+        if index in objects.SERVICE_OBJECTS:
+            self._service_write(index, bytes(data))
+            return
+        with self.drive.lock:
+            try:
+                entry = objdict.find(index, subindex)
+                objdict.write(self.controller, index, subindex, objdict.decode(bytes(data), entry.datatype), "sdo")
+            except objdict.ObjectError as exc:
+                raise SdoAbortedError(exc.code) from None
+
+    # --- the service objects ----------------------------------------------------------------------------
+    def _service_read(self, index: int) -> bytes:
+        if index == objects.STORE_EDS:
+            return self.eds
+        if index == objects.LINK_MESSAGE:
+            if not self._answer:
+                raise SdoAbortedError(objdict.ABORT_NO_DATA)
+            return self._answer
+        if index == objects.PROGRAM_CONTROL:
+            with self.drive.lock:
+                state = objects.PROGRAM_STATES.get(self.controller.program_state, 0)
+            return objdict.encode(state, "INTEGER32")
+        raise SdoAbortedError(objdict.ABORT_WRITE_ONLY)
+
+    def _service_write(self, index: int, data: bytes) -> None:
+        if index == objects.LINK_MESSAGE:
+            self._answer = self.drive_node.handle_message(data)
+            return
+        if index == objects.STORE_EDS:
+            raise SdoAbortedError(objdict.ABORT_READ_ONLY)
+        service = self.drive_node.service
+        request = {objects.PROGRAM_IMAGE: ("download", {"image": base64.b64encode(data).decode("ascii"),
+                                                        "number": None, "name": ""})}.get(index)
+        if index == objects.PROGRAM_CONTROL:
+            command = objdict.decode(data, "INTEGER32")
+            op = {objects.START: "start", objects.BREAK: "break", objects.CONTINUE: "continue"}.get(command)
+            if op is None:
+                raise SdoAbortedError(objdict.ABORT_VALUE)
+            request = (op, {})
+        with self.drive.lock:
+            response = service.handle(Request(request[0], request[1]))
+        if not response.ok:
+            raise SdoAbortedError(objdict.ABORT_STATE if index == objects.PROGRAM_CONTROL else objdict.ABORT_STORE)
