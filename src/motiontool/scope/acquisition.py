@@ -65,6 +65,7 @@ class FreeRun:
         self.scope, self.link, self.group = scope, link, group
         self.running = False
         self.dropped = 0            # packets whose signals did not match the group (another stream)
+        self.link_dropped: int | None = None  # values the link lost on the way, when it counts them (PDOs)
         self.received = 0
         self.last_event_time: float | None = None  # wall clock of the last packet (latency measurement)
         self._subscribed = subscribe
@@ -119,6 +120,8 @@ class FreeRun:
         if list(data.get("signals", [])) != self._signals:
             self.dropped += 1
             return
+        if "dropped" in data:
+            self.link_dropped = int(data["dropped"])
         t = np.asarray(data["time_ms"], dtype=float)
         v = np.asarray(data["values"], dtype=float).reshape(t.size, len(self._signals))
         # byte/word/bit curves: select before the trigger sees the values; read per packet, as Properties may

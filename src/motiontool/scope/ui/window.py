@@ -378,6 +378,8 @@ class ScopeWindow(RunControl, QMainWindow):
             title += f" — {Path(self.path).name}"
         if self.polling.running:
             title += f" {self.polling.title()}"   # "[<poll ms>ms <load>%]" (DG 5416)
+        elif self.free_run is not None and self.free_run.running and self.free_run.link_dropped is not None:
+            title += f" [PDO: {self.free_run.link_dropped} lost]"   # a link that counts lost values (S31)
         elif self.single_shot is not None and self.single_shot.running:
             rec = self._recording_status
             title += " [recording]" if not rec else f" [recording {rec['samples']}/{rec['limit']}]"
