@@ -28,8 +28,10 @@ from PySide6.QtWidgets import (
 
 from motiontool.ui.controllers import BAUDS, SIMULATED_IDS, ControllerRegistry, InterfaceConfig
 
-KINDS = {"sim": "Simulator (embedded MCO 305)", "fc": "FC protocol (RS-485 / USB)"}
+KINDS = {"sim": "Simulator (embedded MCO 305)", "fc": "FC protocol (RS-485 / USB)",
+         "canopen": "CANopen (slcan, SocketCAN, PCAN, Kvaser, IXXAT … adapter)"}
 DEFAULTS = {"sim": InterfaceConfig("sim", "", 9600, 1, len(SIMULATED_IDS)),
+            "canopen": InterfaceConfig("canopen", "slcan:socket://127.0.0.1:4002", 9600, 1, 8),
             "fc": InterfaceConfig("fc", "/dev/ttyUSB0", 9600, 1, 8)}
 ROLE = Qt.ItemDataRole.UserRole
 
@@ -81,7 +83,9 @@ class InterfaceSettingsDialog(QDialog):
         self.port = QComboBox()
         self.port.setEditable(True)
         self.port.addItems(serial_ports())
-        self.port.setToolTip("a serial port (/dev/ttyUSB0, COM3) or any pyserial URL (socket://HOST:PORT)")
+        self.port.setToolTip("FC: a serial port (/dev/ttyUSB0, COM3) or any pyserial URL (socket://HOST:PORT); "
+                             "CANopen: INTERFACE:CHANNEL of python-can (slcan:socket://HOST:PORT, socketcan:can0, "
+                             "pcan:PCAN_USBBUS1)")
         self.baud = QComboBox()
         for baud in BAUDS:
             self.baud.addItem(str(baud), baud)
@@ -125,7 +129,7 @@ class InterfaceSettingsDialog(QDialog):
         self.default.setChecked(kind == self.default_kind)
         wire = kind != "sim"
         self.port.setEnabled(wire)
-        self.baud.setEnabled(wire)
+        self.baud.setEnabled(kind == "fc")      # a CAN adapter's bit rate is the bus's, not ours
         self._shown = kind
 
     def _read(self, kind: str) -> InterfaceConfig:
