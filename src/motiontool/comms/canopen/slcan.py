@@ -16,6 +16,7 @@ Listens on 127.0.0.1 only unless told otherwise.
 from __future__ import annotations
 
 import contextlib
+import select
 import socket
 import threading
 import time
@@ -271,6 +272,7 @@ class SlcanSocketBus(can.BusABC):
         except OSError as exc:
             raise can.CanInitializationError(f"cannot connect to {channel}: {exc}") from exc
         self.sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        self.sock.settimeout(timeout)      # for send and close; reads wait in select (_read)
         self._buffer = b""
         self._lines: deque[str] = deque()
         self._send_lock = threading.Lock()
@@ -305,13 +307,13 @@ class SlcanSocketBus(can.BusABC):
                 return None, False
 
     def _read(self, timeout: float | None) -> bool:
-        """Read what has arrived (waiting at most `timeout`); True when lines came."""
+        """Read what has arrived (waiting at most `timeout`); True when lines came. The wait is a select, not a
+        socket timeout, which `send` in other threads would share."""
         try:
-            self.sock.settimeout(timeout)
+            if not select.select([self.sock], [], [], timeout)[0]:
+                return False
             chunk = self.sock.recv(READ_SIZE)
-        except (TimeoutError, BlockingIOError):
-            return False
-        except OSError as exc:
+        except (OSError, ValueError) as exc:      # ValueError: select on a socket closed by shutdown()
             raise can.CanOperationError(f"slcan read failed: {exc}") from exc
         if not chunk:
             raise can.CanOperationError("the slcan server closed the connection")
