@@ -61,6 +61,7 @@ def test_python_canopens_remote_node_with_only_the_shipped_eds_reads_and_writes_
     network.connect(interface="virtual", channel=drive.channel)
     try:
         node = network.add_node(2, str(eds.eds_path()))
+        node.sdo.RESPONSE_TIMEOUT = 5.0     # per segment: the EDS upload of 0x1021 is long, the machine may be busy
         kprop = node.sdo["32-60 KPROP"]
         assert kprop.raw == 30
         kprop.raw = 150
