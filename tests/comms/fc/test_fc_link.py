@@ -319,3 +319,25 @@ def test_a_scan_leaves_the_retries_of_the_links_on_its_bus_alone():
         scanning.join()
         link.close()
         line.close()
+
+
+def test_a_scan_asks_the_silent_addresses_once_more():
+    """A drive that misses a probe (busy for a moment, or the PC is loaded) is still found by Open Interface: the
+    addresses that did not answer get a second round (here the line loses every first try)."""
+    seen = set()
+
+    def first_try_lost(request, answer):
+        raw = fc.encode(request)
+        if raw in seen:
+            return answer
+        seen.add(raw)
+        return b""
+
+    line = MeddlingLine(first_try_lost)
+    link = FcLink(FcBus(BusSettings(line.path, timeout_s=0.05)), 2)
+    try:
+        assert scan(link.bus, range(1, 4)) == [1]
+        assert len(seen) == 3                          # each address probed; only the silent ones twice
+    finally:
+        link.close()
+        line.close()

@@ -164,19 +164,23 @@ def default_poll_interval(bus: FcBus) -> float:
 
 
 def scan(bus: FcBus, addresses, fmt: int | None = None) -> list[int]:
-    """The addresses in `addresses` that answer (a "no command" telegram each, one try, short timeout)."""
-    found = []
+    """The addresses in `addresses` that answer a "no command" telegram (one try with a short timeout each, then one
+    more round for those that did not: a drive busy for a moment, or a loaded PC, is not taken for absent)."""
     timeout_s = min(bus.settings.timeout_s, 0.05)
-    for address in addresses:
-        adr = encode_address(address, fmt=fmt)
+
+    def answers(address: int) -> bool:
         try:
-            bus.transact(parameter(adr, AK_NONE, 0), retries=0, timeout_s=timeout_s)
+            bus.transact(parameter(encode_address(address, fmt=fmt), AK_NONE, 0), retries=0, timeout_s=timeout_s)
         except ConnectionLost:
             if bus.closed:
                 raise
-            continue
-        found.append(address)
-    return found
+            return False
+        return True
+
+    addresses = list(addresses)
+    found = {address for address in addresses if answers(address)}
+    found |= {address for address in addresses if address not in found and answers(address)}
+    return sorted(found)
 
 
 def scan_spec(spec: LinkSpec, addresses) -> list[int]:
