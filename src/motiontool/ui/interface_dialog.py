@@ -157,12 +157,13 @@ class SelectControllerDialog(QDialog):
         super().__init__(parent)
         self.setWindowTitle("Select Controller")
         self.registry = registry
-        self.configs, _ = load_interfaces(settings)
+        self.configs, default_kind = load_interfaces(settings)
         self.tree = QTreeWidget()
         self.tree.setHeaderLabels(["Interface / controller"])
         self.interface = QComboBox()
         for kind, text in KINDS.items():
             self.interface.addItem(f"{text}: {self.configs[kind].description}", kind)
+        self.interface.setCurrentIndex(max(0, self.interface.findData(default_kind)))  # Open Interface: the default
         self.open_button = QPushButton("Open Interface")
         self.open_button.clicked.connect(self.open_selected_interface)
         self.message = QLabel("")
