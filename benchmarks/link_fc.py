@@ -29,8 +29,9 @@ from motiontool.scope.curves import Scope
 BAUD = 115200
 
 
-def start_drive():
-    proc = subprocess.Popen([sys.executable, "-m", "motiontool", "drive", "--listen", f"fc:pty,baud={BAUD}",
+def start_drive(baud: int = BAUD):
+    """`motiontool drive` on a pty paced at `baud`, in its own process (ended with this one): (process, URL)."""
+    proc = subprocess.Popen([sys.executable, "-m", "motiontool", "drive", "--listen", f"fc:pty,baud={baud}",
                              "--stop-with-parent"], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
     if not select.select([proc.stdout], [], [], 60)[0]:

@@ -6,6 +6,7 @@ step is fired as a user fires it (menu actions, clicks, keys)."""
 from __future__ import annotations
 
 import re
+import time
 
 import pytest
 from PySide6.QtCore import Qt, QTimer
@@ -15,13 +16,18 @@ from tests.comms.drive_process import DriveProcess, drive_process
 
 
 def answer_dialog(qtbot, handle):
-    """Run `handle(dialog)` on the next modal dialog, once it is shown (the action's exec() blocks until then)."""
+    """Run `handle(dialog)` on the next modal dialog, once it is shown (the action's exec() blocks until then). When
+    `handle` fails the dialog is rejected, so the test fails instead of waiting for a user forever."""
     def attempt():
         dialog = QApplication.activeModalWidget()
         if dialog is None:
             QTimer.singleShot(20, attempt)
             return
-        handle(dialog)
+        try:
+            handle(dialog)
+        except BaseException:
+            dialog.reject()
+            raise
     QTimer.singleShot(0, attempt)
 
 
@@ -36,14 +42,14 @@ def type_into(qtbot, widget, text):
     qtbot.keyClicks(widget, text)
 
 
-def set_fc_interface(qtbot, window, url, first=1, last=3):
-    """Settings → Interface: FC protocol, the drive's URL, 115200 baud, IDs first..last, the default."""
+def set_fc_interface(qtbot, window, url, first=1, last=3, baud="115200"):
+    """Settings → Interface: FC protocol, the drive's URL, the baud rate (115200), IDs first..last, the default."""
     def handle(dialog):
         dialog.kind.setFocus()
         qtbot.keyClicks(dialog.kind, "FC")
         type_into(qtbot, dialog.port.lineEdit(), url)
         dialog.baud.setFocus()
-        qtbot.keyClicks(dialog.baud, "115200")
+        qtbot.keyClicks(dialog.baud, baud)
         type_into(qtbot, dialog.first, str(first))
         type_into(qtbot, dialog.last, str(last))
         if not dialog.default.isChecked():
@@ -60,7 +66,9 @@ def select_controller(qtbot, window, label):
         tree = dialog.tree
         items = [tree.topLevelItem(i).child(j) for i in range(tree.topLevelItemCount())
                  for j in range(tree.topLevelItem(i).childCount())]
-        item = next(i for i in items if i.text(0) == label and "FC" in i.parent().text(0))
+        matching = [i for i in items if i.text(0) == label and "FC" in i.parent().text(0)]
+        assert matching, f"{label} is not listed: {[(i.parent().text(0), i.text(0)) for i in items]}"
+        item = matching[0]
         rect = tree.visualItemRect(item)
         qtbot.mouseClick(tree.viewport(), Qt.MouseButton.LeftButton, pos=rect.center())
         click_ok(qtbot, dialog)
@@ -181,3 +189,61 @@ def test_a_link_timeout_stops_the_program_on_the_drive_and_the_ide_says_so(windo
             window.bridge.detach(close=False)
             window.controllers.close()
             proxy.close()
+
+
+def test_the_window_stays_responsive_while_a_slow_line_answers(window, qtbot):
+    """A drive on a 2400-baud line needs about a second to answer a status request: the window keeps handling its
+    events meanwhile (a 20 ms timer keeps firing), and the status still arrives (the status bar follows the
+    program). The status is asked for on a worker thread; the UI still talks only through the Link. (Asked on the
+    GUI thread, as before, the window stood still 1.9 s.)"""
+    with drive_process("--node", "1", listen="fc:pty,baud=2400") as drive:
+        path = drive.url.removeprefix("fc:")
+        set_fc_interface(qtbot, window, path, 1, 1, baud="2400")
+        assert window.controllers.default.baud == 2400
+        select_controller(qtbot, window, "Controller 1")
+        qtbot.waitUntil(lambda: "idle" in window.controller_label.text(), timeout=20000)
+        ticks = []
+        timer = QTimer(window, interval=20, timeout=lambda: ticks.append(time.monotonic()))
+        try:
+            execute(qtbot, window, 'PRINT "slow line"\n')                # blocks while it downloads: a command
+            timer.start()
+            qtbot.waitUntil(lambda: "[01] slow line" in window.messages.toPlainText(), timeout=20000)
+            qtbot.waitUntil(lambda: "program ended" in window.controller_label.text(), timeout=20000)
+            qtbot.wait(300)
+        finally:
+            timer.stop()
+            window.bridge.detach(close=False)
+            window.controllers.close()
+        gaps = [b - a for a, b in zip(ticks, ticks[1:], strict=False)]
+        assert len(ticks) > 20 and max(gaps) < 0.5, f"the window stood still {max(gaps):.2f} s"
+
+
+def test_close_interface_while_the_status_is_on_a_slow_line(window, qtbot):
+    """Close Interface (DG 2548-2550) while the window's first status request is still on a 2400-baud line: the
+    status thread ends, the answer of the closed link never reaches the window, and closing is not reported as a
+    lost connection. Then the window connects again and closes: its status thread ends with it."""
+    with drive_process("--node", "1", listen="fc:pty,baud=2400") as drive:
+        set_fc_interface(qtbot, window, drive.url.removeprefix("fc:"), 1, 1, baud="2400")
+        select_controller(qtbot, window, "Controller 1")          # asks for the status at once (about 1 s)
+        thread = window.bridge.status_worker.worker
+        assert thread is not None and thread.is_alive()
+        answers = []
+        window.bridge.status_changed.connect(answers.append)
+        window.actions_by_text["Close Interface"].trigger()
+        assert not window.bridge.connected
+        qtbot.waitUntil(lambda: not thread.is_alive(), timeout=10000)
+        qtbot.wait(200)                                           # anything queued would arrive now
+        assert answers == []
+        assert window.controller_label.text() == "Controller: not connected"
+        assert "Lost connection" not in window.messages.toPlainText()
+        assert not window.connection.reconnect_button.isVisible()
+
+        window.actions_by_text["New APOSS Window"].trigger()         # the last window closes the interfaces
+        other = window.other_windows[-1]
+        qtbot.addWidget(other)
+        select_controller(qtbot, other, "Controller 1")
+        qtbot.waitUntil(lambda: "idle" in other.controller_label.text(), timeout=20000)
+        thread = other.bridge.status_worker.worker
+        other.close()
+        qtbot.waitUntil(lambda: not thread.is_alive(), timeout=10000)
+        window.controllers.close()

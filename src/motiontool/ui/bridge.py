@@ -1,12 +1,14 @@
-"""Qt side of a comms Link: link events arrive on the kernel thread; here they become Qt signals that are
-delivered in the GUI thread (queued), and the controller status is polled for the status bar."""
+"""Qt side of a comms Link: link events arrive on the kernel thread (or a wire link's event poller); here they
+become Qt signals that are delivered in the GUI thread (queued), and the controller status is polled for the status
+bar on a worker thread (ui/status_worker.py), so the window never waits for a slow line to answer it."""
 
 from __future__ import annotations
 
-from PySide6.QtCore import QObject, QTimer, Signal
+from PySide6.QtCore import QObject, Signal
 
 from motiontool.comms.link import Link
-from motiontool.comms.protocol import LinkError, LinkEvent, Status
+from motiontool.comms.protocol import LinkEvent, Status
+from motiontool.ui.status_worker import StatusWorker
 
 
 class LinkBridge(QObject):
@@ -25,10 +27,10 @@ class LinkBridge(QObject):
         self.controller_id = 1
         self._callback = None
         self._event.connect(self._dispatch)  # emitted from the kernel thread → queued into the GUI thread
-        self._timer = QTimer(self)
-        self._timer.setInterval(poll_ms)
         self._poll_ms = poll_ms
-        self._timer.timeout.connect(self.poll)
+        self.status_worker = StatusWorker(self)
+        self.status_worker.polled.connect(self._polled)
+        self.status_worker.failed.connect(self._lost)
         self.last_status: Status | None = None
 
     @property
@@ -40,39 +42,40 @@ class LinkBridge(QObject):
         self.link = link
         self.description = description
         self.controller_id = controller_id
+        self.last_status = None                 # the new controller's first answer is news
         # Events are tagged with the controller they came from: after a switch, queued ones keep their ID.
         self._callback = lambda event, *, cid=controller_id: self._event.emit((cid, event))
         link.subscribe(self._callback)
-        # a slow line (FC at 9600 baud) is asked for the status less often than the simulator
-        self._timer.setInterval(max(self._poll_ms, int(1000 * link.status_interval_s)))
-        self._timer.start()
         self.connection_changed.emit("connected")
-        self.poll()
+        # at once, then periodically; a slow line (FC at 9600 baud) less often than the simulator
+        self.status_worker.follow(link, max(self._poll_ms / 1000, link.status_interval_s))
 
     def detach(self, *, close: bool = True) -> None:
         """Let go of the controller; with close=False its link stays open and its program keeps running."""
         if self.link is not None:
+            self.status_worker.stop()
             self.link.unsubscribe(self._callback)
             if close:
                 self.link.close()
             self.link = None
-            self._timer.stop()
             self.connection_changed.emit("closed")
 
     def poll(self) -> None:
-        if self.link is None:
-            return
-        try:
-            status = self.link.status()
-        except LinkError:
-            self._timer.stop()
-            self.link.unsubscribe(self._callback)
-            self.link = None  # the next command that needs the controller reconnects (DG 2064-2066)
-            self.connection_changed.emit("lost")
-            return
-        if status != self.last_status:
+        """Ask for the status now (after a command, on a program event): it arrives as `status_changed` when it
+        differs from the last one, without the window waiting for it."""
+        self.status_worker.poll_now()
+
+    def _polled(self, status: Status) -> None:
+        if self.link is not None and status != self.last_status:
             self.last_status = status
             self.status_changed.emit(status)
+
+    def _lost(self, _text: str) -> None:
+        if self.link is None:
+            return
+        self.link.unsubscribe(self._callback)
+        self.link = None  # the next command that needs the controller reconnects (DG 2064-2066)
+        self.connection_changed.emit("lost")
 
     def _dispatch(self, tagged: tuple[int, LinkEvent]) -> None:
         cid, event = tagged

@@ -1,0 +1,79 @@
+"""The IDE window on a slow FC line (issue 14): `motiontool drive --listen fc:pty,baud=9600` in its own process and
+an APOSS window (offscreen) connected to its controller 1, which runs a program that prints 4 lines a second. For
+`--seconds` (default 20) a 10 ms timer in the GUI thread notes when it fires. Prints
+- ide_gui_stall_max_9600_baud: the longest the GUI thread did not get to its timer (ms; the timer's own 10 ms
+  included) — a status exchange asked on the GUI thread stops the window for its whole wire time (~0.26 s),
+- ide_gui_stall_p99_9600_baud: the 99th percentile of those gaps (ms),
+- ide_status_answers_9600_baud: status answers that reached the window per second (the status is asked every
+  `status_interval_s`, 2.6 s at 9600 baud),
+- ide_printed_lines_9600_baud: PRINT lines of the program that reached the Communication pane per second (events).
+`--baud` sets another baud rate (the names follow it)."""
+
+import argparse
+import os
+import sys
+import tempfile
+import time
+
+from link_fc import start_drive
+
+PROGRAM = """main:
+PRINT "tick ", TIME
+DELAY 250
+GOTO main
+"""
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--seconds", type=float, default=20.0)
+    parser.add_argument("--baud", type=int, default=9600)
+    args = parser.parse_args()
+    os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+    from PySide6.QtCore import QEventLoop, QSettings, QTimer
+    from PySide6.QtWidgets import QApplication
+
+    from motiontool.ui.controllers import InterfaceConfig
+    from motiontool.ui.main_window import MainWindow
+
+    app = QApplication.instance() or QApplication(sys.argv)
+    proc, url = start_drive(args.baud)
+    with tempfile.TemporaryDirectory() as tmp:
+        window = MainWindow(settings=QSettings(f"{tmp}/settings.ini", QSettings.Format.IniFormat))
+        window.ask_to_save = False
+        window.show()
+        try:
+            window.controllers.set_default(InterfaceConfig("fc", url.removeprefix("fc:"), args.baud, 1, 1))
+            if not window.connection.select(1):
+                raise SystemExit(window.messages.toPlainText())
+            editor = window.new_file()
+            editor.setPlainText(PROGRAM)
+            window.actions_by_text["Execute"].trigger()       # a command: it waits for its download
+            answers, ticks = [], []
+            window.bridge.status_changed.connect(lambda status: answers.append(status.time_ms))
+            timer = QTimer(window, interval=10, timeout=lambda: ticks.append(time.monotonic()))
+            app.processEvents()
+            answers.clear()
+            printed = window.messages.toPlainText().count("tick ")
+            timer.start()
+            loop = QEventLoop()
+            QTimer.singleShot(int(1000 * args.seconds), loop.quit)
+            loop.exec()
+            timer.stop()
+            printed = window.messages.toPlainText().count("tick ") - printed
+            gaps = sorted(1000 * (b - a) for a, b in zip(ticks, ticks[1:], strict=False))
+            span = ticks[-1] - ticks[0]
+            print(f"ide_gui_stall_max_{args.baud}_baud: {gaps[-1]:.0f} ms")
+            print(f"ide_gui_stall_p99_{args.baud}_baud: {gaps[int(0.99 * (len(gaps) - 1))]:.0f} ms")
+            print(f"ide_status_answers_{args.baud}_baud: {len(answers) / span:.2f} /s")
+            print(f"ide_printed_lines_{args.baud}_baud: {printed / span:.2f} /s")
+        finally:
+            window.bridge.detach(close=False)
+            window.controllers.close()
+            window.close()
+            proc.terminate()
+            proc.wait(timeout=20)
+
+
+if __name__ == "__main__":
+    main()
