@@ -52,7 +52,7 @@ _TOKEN = re.compile(r"""
 |(?P<chr>'[^'\n]')
 |(?P<op><<|>>|==|!=|<=|>=|\+\+|--|[-+*%^&|~<>=()\[\]{},;:.!])
 |(?P<end>\Z))
-""", re.VERBOSE)
+""", re.VERBOSE | re.ASCII)  # ASCII: \d must not take other scripts' digits ("٥" is not 5 in APOSS)
 _DIRECTIVE = re.compile(r"[ \t\f\r]*#((?:[^\n\\]|\\\r?\n|\\(?!\r?\n))*)")
 _BAD_NUMBER_TAIL = re.compile(r"[A-Za-z0-9_]")
 _NAMES = {"\u2013": "EN DASH", "\u2014": "EM DASH", "\u201c": "LEFT DOUBLE QUOTATION MARK",
@@ -191,6 +191,8 @@ def _number(kind: str, word: str, loc: Location, warnings: list[Diagnostic] | No
             warnings.append(Diagnostic("warning", f"'{word}' is an octal constant (= {value}) because it "
                                        "starts with 0", loc))
     else:
+        if len(word) > 10:  # certainly beyond the range; int() of a huge literal would also be slow or refused
+            raise CompileError(f"constant '{word[:20]}...' is outside the LONG range -2147483648 … 2147483647", loc)
         value = int(word)
         # DG 6397: LONG is -2147483648 … 2147483647; 2147483648 only after a minus sign
         if value > (1 << 31) or (value == (1 << 31) and not negated):

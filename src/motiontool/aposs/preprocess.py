@@ -12,9 +12,16 @@ from pathlib import Path
 
 from motiontool.aposs.diagnostics import CompileError, Diagnostic, Location
 from motiontool.aposs.lexer import DIRECTIVE, EOF, IDENT, INT, NEWLINE, OP, STRING, Token, tokenize
+from motiontool.fileio import MiB, read_bytes
 
 PRAGMA = "PRAGMA"  # token kind handed to the parser: value = "IMPLICIT" | "NOIMPLICIT"
 MAX_INCLUDE_DEPTH = 32
+# Macro expansion is bounded, so a small file cannot stall or exhaust the compiler (20 doubling #defines are 2^20
+# tokens) - and the IDE compiles after every edit (decisions L22).
+MAX_LINE_TOKENS = 10_000       # tokens one source line may expand to
+MAX_EXPANDED_TOKENS = 200_000  # tokens all macro uses of a program may produce together (100x a 10 000-line one)
+MAX_MACRO_DEPTH = 100          # macros inside macros inside macros ...
+MAX_SOURCE_BYTES = 16 * MiB    # a program or include file (decisions R4)
 _DIRECTIVES = ("include", "define", "undef", "if", "ifdef", "ifndef", "elif", "else", "endif", "pragma")
 _NAME = r"[A-Za-z_][A-Za-z0-9_]*"
 
@@ -51,7 +58,7 @@ class PreprocessResult:
 
 def read_source(path: Path) -> str:
     """Read a program file: UTF-8, falling back to Latin-1 (old APOSS files), line ends normalised."""
-    data = path.read_bytes()
+    data = read_bytes(path, MAX_SOURCE_BYTES, "program file")
     try:
         text = data.decode("utf-8-sig")
     except UnicodeDecodeError:
@@ -65,6 +72,7 @@ class Preprocessor:
         self.macros: dict[str, Macro] = {}
         self.result = PreprocessResult([])
         self._stamp = time.localtime()
+        self._expanded = 0  # tokens made by macro expansion so far (MAX_EXPANDED_TOKENS)
         for name, value in (defines or {}).items():
             loc = Location("<command line>", 1, 1)
             self.macros[name] = Macro(name, None, tokenize(value, "<command line>")[:-2], loc)
@@ -179,7 +187,11 @@ class Preprocessor:
         target = (quoted or system or bare).replace("\\", "/")
         here = Path(name).parent if Path(name).parent != Path("") else Path(".")
         search = ([] if system else [here]) + self.include_dirs
-        found = next((d / target for d in search if (d / target).is_file()), None)
+        try:
+            found = next((d / target for d in search if (d / target).is_file()), None)
+        except OSError as exc:  # e.g. a name longer than the file system allows
+            shown = target if len(target) <= 60 else target[:57] + "..."
+            raise CompileError(f"cannot use include file name '{shown}': {exc.strerror}", tok.loc) from None
         if found is None:
             where = ", ".join(str(d) for d in search) or "no include directory"
             raise CompileError(f"cannot find include file '{target}' (searched: {where})", tok.loc)
@@ -237,18 +249,27 @@ class Preprocessor:
                     continue
                 args, end = self._collect_args(toks, end, macro, t)
                 args = [self._expand(a, file) for a in args]
-            note = (f"in expansion of macro '{macro.name}' (defined at {macro.loc})", t.loc)
+            if len(t.origin) >= MAX_MACRO_DEPTH:
+                raise CompileError(f"macro '{macro.name}' is expanded inside more than {MAX_MACRO_DEPTH} other "
+                                   "macros (recursive definitions?)", t.loc, t.origin[:3])
+            origin = t.origin + ((f"in expansion of macro '{macro.name}' (defined at {macro.loc})", t.loc),)
+            hide = t.hide | {macro.name}
             made = []
             for b in macro.body:
                 if macro.params and b.kind == IDENT and b.text in macro.params:
                     for a in args[macro.params.index(b.text)]:
                         made.append(replace(a, hide=a.hide | t.hide))
                 else:
-                    made.append(replace(b, loc=t.loc, hide=t.hide | {macro.name},
-                                        origin=t.origin + (note,)))
+                    made.append(replace(b, loc=t.loc, hide=hide, origin=origin))
             for k, m in enumerate(made):
                 if macro.name not in m.hide:
                     made[k] = replace(m, hide=m.hide | {macro.name})
+            self._expanded += len(made)
+            if len(toks) - (end - i) + len(made) > MAX_LINE_TOKENS or self._expanded > MAX_EXPANDED_TOKENS:
+                limit = (f"more than {MAX_LINE_TOKENS} tokens on one line" if self._expanded <= MAX_EXPANDED_TOKENS
+                         else f"more than {MAX_EXPANDED_TOKENS} tokens in the program")
+                raise CompileError(f"macro '{_outermost(t, macro)}' expands to {limit} (doubling or recursive "
+                                   "macros?)", t.loc, t.origin[:3])
             toks[i:end] = made
         return toks
 
@@ -305,7 +326,10 @@ class Preprocessor:
                 if t.kind == IDENT and t.value not in ("AND", "OR", "NOT", "MOD", "RND", "EXP") else t for t in toks]
         from motiontool.aposs.constexpr import evaluate_tokens
 
-        return evaluate_tokens(toks, tok.loc) != 0
+        try:
+            return evaluate_tokens(toks, tok.loc) != 0
+        except RecursionError:
+            raise CompileError(f"#{word} condition nested too deeply", tok.loc) from None
 
     def _replace_defined(self, toks: list[Token]) -> list[Token]:
         out, i = [], 0
@@ -326,6 +350,15 @@ class Preprocessor:
             out.append(t)
             i += 1
         return out
+
+
+def _outermost(t: Token, macro: Macro) -> str:
+    """The name of the macro written in the source that ``t`` came out of (or ``macro`` itself)."""
+    if t.origin:
+        m = re.match(r"in expansion of macro '([^']*)'", t.origin[0][0])
+        if m:
+            return m.group(1)
+    return macro.name
 
 
 def preprocess_file(path: Path, include_dirs: list[Path] | None = None) -> PreprocessResult:
