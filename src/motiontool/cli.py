@@ -73,8 +73,17 @@ def _add_link_option(p: argparse.ArgumentParser, note: str) -> None:
                    f"see docs/link-protocol.md; {note}")
 
 
+class _Parser(argparse.ArgumentParser):
+    """Command-line errors exit 1 like every other refusal before anything ran (argparse's own would be 2, which
+    `run` uses for a controller error; decisions R10). Sub-command parsers inherit this class."""
+
+    def error(self, message: str):
+        self.print_usage(sys.stderr)
+        self.exit(1, f"{self.prog}: error: {message}\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="motiontool",
         description="Engineering IDE for the MCO 305 motion controller. Without a sub-command the IDE opens.")
     parser.add_argument("--version", action="version", version=f"motiontool {__version__}")
@@ -108,8 +117,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("run", help="run a program on the embedded simulated controller",
                        description="stdout: exactly the program's PRINT output; stderr: controller errors. "
-                                   "Exit 0 when the program ends or the time is up, 1 on a compile error, "
-                                   "2 on an unhandled controller error. With --node, several controllers (node "
+                                   "Exit 0 when the program ends or the time is up, 1 on a compile error or a "
+                                   "refused file, option or output path, 2 on an unhandled controller error. "
+                                   "With --node, several controllers (node "
                                    "ids 1..32) run in lockstep on one master signal: FILE.m (optional then) on "
                                    "node 1, each --node ID:PROGRAM.m on node ID; the virtual master (PULSVEL) of "
                                    "--master-node is the master input of all the others; each output line is "

@@ -4,7 +4,7 @@ virtual time and report exactly what the program printed (stdout) and the contro
 from __future__ import annotations
 
 import contextlib
-import csv
+import math
 import os
 import re
 import sys
@@ -18,9 +18,15 @@ from motiontool.cameditor.zbc import ConfigError, read_config
 from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.protocol import LinkError, LinkEvent
 from motiontool.dpl.driver import check_source, is_dpl
+from motiontool.fileio import AtomicFile, atomic_write_text, check_writable, write_error
 
+# 1: nothing ran - a compile error, a file or a command line that was refused (decisions R10); 2: the controller
+# stopped the program with an error.
 EXIT_OK, EXIT_COMPILE, EXIT_CONTROLLER = 0, 1, 2
-_INPUT = re.compile(r"^(\d+)=(-?\d+)(?:@(\d+))?$")
+EXIT_REFUSED = EXIT_COMPILE
+_INPUT = re.compile(r"^([0-9]+)=(-?[0-9]+)(?:@([0-9]+))?$")  # ASCII digits: \d would take "٥"
+_WHOLE = re.compile(r"^[-+]?(0[xX][0-9a-fA-F]+|[0-9]+)$")
+_NODE_PREFIX = re.compile(r"^\s*-?[0-9]+\s*:")
 
 
 @dataclass
@@ -88,11 +94,59 @@ def load_config(options, err):
 
 
 
+def check_options(path: Path | None, options: RunOptions, err) -> bool:
+    """What can be judged before anything is compiled: the numbers, node prefixes without --node, and whether
+    every output file can be written (a long run must not end in a traceback). False after printing why."""
+    problems = []
+    if not (math.isfinite(options.seconds) and 0 < options.seconds <= MAX_SECONDS):
+        problems.append(f"--seconds {options.seconds:g}: give a time in seconds, above 0 and at most {MAX_SECONDS}")
+    if options.trace_interval_ms < 1:
+        problems.append(f"--interval {options.trace_interval_ms}: the trace interval is at least 1 ms")
+    if not options.nodes:
+        for option, values, form in (("--set", options.settings, "KPROP=5"), ("--input", options.inputs, "3=1@100")):
+            for value in values:
+                if _NODE_PREFIX.match(value):
+                    problems.append(f"{option} {value}: 'ID:' picks a controller, which needs --node (several "
+                                    f"controllers); for the one controller write {option} {form}")
+    for value in options.inputs:
+        m = _INPUT.match(value.split(":", 1)[1].strip() if options.nodes and ":" in value else value.strip())
+        if m and m.group(3) and int(m.group(3)) > options.seconds * 1000:
+            problems.append(f"--input {value}: {m.group(3)} ms is after the end of the run (--seconds "
+                            f"{options.seconds:g})")
+    for problem in problems:
+        print(f"motiontool run: {problem}", file=err)
+    return not problems and _outputs_writable(path, options, err)
+
+
+MAX_SECONDS = 10 * 24 * 3600  # ten days of virtual time
+
+
+def _outputs_writable(path: Path | None, options: RunOptions, err) -> bool:
+    targets = [options.trace] if options.trace else []
+    if options.record:
+        targets += [_record_path(options.record, n) for n in _node_ids(path, options)] if options.nodes \
+            else [options.record]
+    for target in targets:
+        try:
+            check_writable(target)
+        except OSError as exc:
+            print(f"motiontool run: {write_error(target, exc)}", file=err)
+            return False
+    return True
+
+
+def _node_ids(path: Path | None, options: RunOptions) -> list[int]:
+    try:
+        return sorted(_node_programs(path, options.nodes))
+    except _Usage:
+        return []  # reported later, with the other --node problems
+
+
 def prepare_link(link, config, settings: list[str], inputs: list[str], options, err, node_ids: bool = False,
                  time_base: int = 0) -> bool:
     """Load --config, then --set and --input into one controller before its program starts; False after
-    printing why on err. ``node_ids``: the options were given as [ID:]… (several controllers); ``time_base``: the
-    controller's time when the run starts (input times count from there)."""
+    printing why on err (a command-line error: EXIT_REFUSED). ``node_ids``: the options were given as [ID:]…
+    (several controllers); ``time_base``: the controller's time when the run starts (input times count from there)."""
     form = "[ID:]" if node_ids else ""
     if config is not None:
         try:
@@ -102,27 +156,90 @@ def prepare_link(link, config, settings: list[str], inputs: list[str], options, 
             return False
     for setting in settings:
         key, _, value = setting.partition("=")
-        if not value:
+        if not value or not key.strip():
             print(f"motiontool run: --set needs {form}NAME=VALUE, got '{setting}'", file=err)
             return False
-        try:
-            number = int(value, 0)
-        except ValueError:
+        if not _WHOLE.match(value.strip()):
             print(f"motiontool run: --set {key}: '{value}' is not a whole number", file=err)
             return False
-        link.write_parameter(key.strip(), number)
+        try:  # the controller refuses unknown, read-only and out-of-range parameters
+            link.write_parameter(key.strip(), int(value.strip(), 0))
+        except LinkError as exc:
+            print(f"motiontool run: --set {setting}: {exc}", file=err)
+            return False
     for spec in inputs:
         m = _INPUT.match(spec.strip())
         if not m:
             print(f"motiontool run: --input needs {form}N=V or {form}N=V@T (ms), got '{spec}'", file=err)
             return False
-        link.call("schedule_input", number=int(m.group(1)), value=int(m.group(2)),
-                  time_ms=time_base + int(m.group(3) or 0))
+        try:  # the controller refuses inputs it does not have
+            link.call("schedule_input", number=int(m.group(1)), value=int(m.group(2)),
+                      time_ms=time_base + int(m.group(3) or 0))
+        except LinkError as exc:
+            print(f"motiontool run: --input {spec}: {exc}", file=err)
+            return False
     return True
 
 
+class _OutputError(Exception):
+    """An output file of the run could not be written: ``cannot write PATH: reason`` (exit 1)."""
+
+
+class TraceWriter:
+    """--trace: rows go to the file while the program runs (an hour of 1 ms rows is some 2 GB in memory); the file
+    appears, complete, only at the end (fileio.AtomicFile). With several controllers a row is written once every
+    node has sent its samples for that time."""
+
+    def __init__(self, path: Path, nodes: list[int], signals: list[str]):
+        self.path = path
+        self.nodes = nodes
+        self.error: str | None = None  # the first failed write (the run stops; events cannot raise)
+        self.file = AtomicFile(path)
+        self.pending: dict[int, dict[int, list]] = {n: {} for n in nodes}
+        self.latest = {n: -1 for n in nodes}
+        self.empty = [""] * len(signals)
+        header = ["time_ms", *signals] if len(nodes) == 1 else \
+            ["time_ms", *(f"{n}:{s}" for n in nodes for s in signals)]
+        self.file.write(",".join(header) + "\n")
+
+    def add(self, node: int, data: dict) -> None:
+        rows = self.pending[node]
+        for t, values in zip(data["time_ms"], data["values"], strict=True):
+            rows[t] = values
+            self.latest[node] = max(self.latest[node], t)
+        self.flush(min(self.latest.values()))
+
+    def flush(self, until: float = math.inf) -> None:
+        times = sorted({t for n in self.nodes for t in self.pending[n] if t <= until})
+        lines = []
+        for t in times:
+            values = [v for n in self.nodes for v in self.pending[n].pop(t, self.empty)]
+            lines.append(",".join(str(v) for v in [t, *values]) + "\n")
+        if self.error is None:
+            try:
+                self.file.write("".join(lines))
+            except OSError as exc:  # a full disk, a share gone: reported by the run, which then stops
+                self.error = write_error(self.path, exc)
+
+    def commit(self) -> None:
+        """Put the complete file in place; raises _OutputError when that (or an earlier write) failed."""
+        self.flush()
+        if self.error is None:
+            try:
+                self.file.commit()
+                return
+            except OSError as exc:
+                self.error = write_error(self.path, exc)
+        raise _OutputError(self.error)
+
+    def discard(self) -> None:
+        self.file.discard()
+
+
 def run_program(path: Path | None, options: RunOptions, out: TextIO | None = None, err: TextIO | None = None) -> int:
-    out, err = out or sys.stdout, err or sys.stderr  # the streams of the moment (a test may have replaced them)
+    out, err = out or sys.stdout, err or sys.stderr  # looked up now: a caller may have redirected them
+    if not check_options(path, options, err):
+        return EXIT_REFUSED
     if is_dpl(path) or any(is_dpl(spec.partition(":")[2].strip()) for spec in options.nodes):
         return run_dpl(path, options, err)  # DPL programs run on the simulated APC (a CTSync line for several)
     if options.nodes:  # a multi-axis project: several controllers on one master signal
@@ -137,7 +254,7 @@ def run_program(path: Path | None, options: RunOptions, out: TextIO | None = Non
         print(f"motiontool run: {exc}", file=err)
         return EXIT_CONTROLLER
     state = {"error": False}
-    trace_rows: list[list] = []
+    trace: TraceWriter | None = None
     output = PrintOutput(out)
 
     def on_event(event: LinkEvent) -> None:
@@ -148,9 +265,8 @@ def run_program(path: Path | None, options: RunOptions, out: TextIO | None = Non
             print(f"{event.text}{where}", file=err)
         elif event.kind == "program" and event.text == "program error":
             state["error"] = True
-        elif event.kind == "samples":
-            for t, values in zip(event.data["time_ms"], event.data["values"], strict=True):
-                trace_rows.append([t, *values])
+        elif event.kind == "samples" and trace is not None:
+            trace.add(1, event.data)
         elif event.kind in ("message", "connection"):
             print(f"motiontool run: {event.text}", file=err)
 
@@ -158,23 +274,30 @@ def run_program(path: Path | None, options: RunOptions, out: TextIO | None = Non
     try:
         time_base = link.status().time_ms
         if not prepare_link(link, config, options.settings, options.inputs, options, err, time_base=time_base):
-            return EXIT_COMPILE
+            return EXIT_REFUSED
         if options.trace:
             link.call("stream", signals=options.signals, interval_ms=options.trace_interval_ms)
+            trace = TraceWriter(options.trace, [1], options.signals)
         link.download(image.to_bytes(), name=image.name)
         link.start()
-        run_until_stopped([link], options, time_base, output)
+        run_until_stopped([link], options, time_base, output, lambda: trace is not None and trace.error is not None)
         output.flush()
-        if options.trace:
+        if trace is not None:
             link.call("stream", signals=[], interval_ms=1)
             link.flush_events()
-            _write_csv(options.trace, ["time_ms", *options.signals], trace_rows)
+            trace.commit()
+            trace = None
         if options.record:
             _write_recordings(link, options.record)
     except LinkError as exc:
         print(f"motiontool run: {exc}", file=err)
         return EXIT_CONTROLLER
+    except _OutputError as exc:  # the folder went away or the disk filled up during the run
+        print(f"motiontool run: {exc}", file=err)
+        return EXIT_REFUSED
     finally:
+        if trace is not None:
+            trace.discard()
         link.close()
     return EXIT_CONTROLLER if state["error"] else EXIT_OK
 
@@ -192,11 +315,12 @@ def open_run_link(spec: str | None, realtime: bool = False, node: int | None = N
     return open_link(replace(parsed, node=node) if node is not None else parsed)
 
 
-def run_until_stopped(links: list, options: RunOptions, time_base: int, output: PrintOutput) -> None:
+def run_until_stopped(links: list, options: RunOptions, time_base: int, output: PrintOutput,
+                      failed=lambda: False) -> None:
     """Controller time runs until every program has stopped or --seconds are up: the first link's `advance`
     moves a virtual clock (all nodes of one simulator share it), paced at real time with --realtime; a clock that
     runs by itself (a drive) is watched in 50 ms steps. Events are fetched after every step, before the status; a
-    closed stdout ends the run after the step."""
+    closed stdout or ``failed()`` (an output that cannot be written) ends the run after the step."""
     import time
 
     total = int(options.seconds * 1000)
@@ -216,7 +340,7 @@ def run_until_stopped(links: list, options: RunOptions, time_base: int, output: 
             elapsed = max(elapsed + 1, lead.status().time_ms - time_base)
         for link in links:
             link.flush_events()
-        if output.closed or all(link.status().program_state != "running" for link in links):
+        if output.closed or failed() or all(link.status().program_state != "running" for link in links):
             break
 
 
@@ -335,8 +459,6 @@ def _advance_with_writes(bus, links: dict, writes: list, total: int, realtime: b
 
 
 def _write_csv(path: Path, header: list[str], rows: list[list]) -> None:
-    from motiontool.fileio import atomic_write_text
-
     lines = [",".join(header)] + [",".join(str(v) for v in row) for row in rows]
     atomic_write_text(path, "\n".join(lines) + "\n")
 
@@ -350,10 +472,16 @@ def _write_recordings(link, path: Path) -> None:
         target = path if n == 0 else path.with_name(f"{path.stem}-{n + 1}{path.suffix}")
         names = [f"{name} [{index}]" for name, index in zip(rec["names"], rec["indices"], strict=True)]
         rows = [[rec["start_ms"] + k * rec["interval_ms"], *sample] for k, sample in enumerate(rec["samples"])]
-        _write_csv(target, ["time_ms", *names], rows)
-    if not recordings:
-        with open(path, "w", newline="", encoding="utf-8") as f:
-            csv.writer(f).writerow(["time_ms"])
+        _write_output(target, ["time_ms", *names], rows)
+    if not recordings:  # still a file, so a script finds what it asked for
+        _write_output(path, ["time_ms"], [])
+
+
+def _write_output(path: Path, header: list[str], rows: list[list]) -> None:
+    try:
+        _write_csv(path, header, rows)
+    except OSError as exc:
+        raise _OutputError(write_error(path, exc)) from None
 
 
 # --- several controllers (--node): a multi-axis project on one master signal (comms/bus.py) -------------------
@@ -399,11 +527,11 @@ def _per_node(values: list[str], nodes: list[int], option: str) -> dict[int, lis
     return result
 
 
-def run_nodes(path: Path | None, options: RunOptions, out: TextIO = sys.stdout, err: TextIO = sys.stderr) -> int:
+def run_nodes(path: Path | None, options: RunOptions, out: TextIO | None = None, err: TextIO | None = None) -> int:
     """Several simulated controllers in lockstep (comms/bus.py, kernel/simulation.py): FILE.m on node 1 and every
     --node ID:PROGRAM.m; the virtual master (PULSVEL) of --master-node (default the lowest id) is the master input
     of all the others. stdout: every PRINT as `N: text`, stderr: controller errors as `N: error …`."""
-
+    out, err = out or sys.stdout, err or sys.stderr
     try:
         programs = _node_programs(path, options.nodes)
         nodes = sorted(programs)
@@ -411,7 +539,7 @@ def run_nodes(path: Path | None, options: RunOptions, out: TextIO = sys.stdout, 
         inputs = _per_node(options.inputs, nodes, "--input")
     except _Usage as exc:
         print(str(exc), file=err)
-        return EXIT_COMPILE
+        return EXIT_REFUSED
     images = {n: compile_program(programs[n], options, err) for n in nodes}
     loaded, config = load_config(options, err)
     if None in images.values() or not loaded:
@@ -425,7 +553,7 @@ def run_nodes(path: Path | None, options: RunOptions, out: TextIO = sys.stdout, 
         print(f"motiontool run: {exc}", file=err)
         return EXIT_CONTROLLER
     failed: set[int] = set()
-    traces: dict[int, dict[int, list]] = {n: {} for n in nodes}
+    trace: TraceWriter | None = None
     output = PrintOutput(out)
 
     def listener(n: int):
@@ -437,9 +565,8 @@ def run_nodes(path: Path | None, options: RunOptions, out: TextIO = sys.stdout, 
                 print(f"{n}: {event.text}{where}", file=err)
             elif event.kind == "program" and event.text == "program error":
                 failed.add(n)
-            elif event.kind == "samples":
-                for t, values in zip(event.data["time_ms"], event.data["values"], strict=True):
-                    traces[n][t] = values
+            elif event.kind == "samples" and trace is not None:
+                trace.add(n, event.data)
             elif event.kind in ("message", "connection"):
                 print(f"{n}: motiontool run: {event.text}", file=err)
         return on_event
@@ -451,33 +578,41 @@ def run_nodes(path: Path | None, options: RunOptions, out: TextIO = sys.stdout, 
             link.subscribe(listener(n))
             if not prepare_link(link, config, settings[n], inputs[n], options, err, node_ids=True,
                                 time_base=time_base):
-                return EXIT_COMPILE
-            if options.trace:
-                link.call("stream", signals=options.signals, interval_ms=options.trace_interval_ms)
+                return EXIT_REFUSED
+        if options.trace:
+            trace = TraceWriter(options.trace, nodes, options.signals)
+            for n in nodes:
+                links[n].call("stream", signals=options.signals, interval_ms=options.trace_interval_ms)
         for n in nodes:
             links[n].download(images[n].to_bytes(), name=images[n].name)
             links[n].start()
-        run_until_stopped([links[n] for n in nodes], options, time_base, output)
+        run_until_stopped([links[n] for n in nodes], options, time_base, output,
+                          lambda: trace is not None and trace.error is not None)
         output.flush()
-        if options.trace:
+        if trace is not None:
             for n in nodes:
                 links[n].call("stream", signals=[], interval_ms=1)
                 links[n].flush_events()
-            times = sorted(set().union(*(traces[n] for n in nodes)))
-            header = ["time_ms", *(f"{n}:{s}" for n in nodes for s in options.signals)]
-            empty = [""] * len(options.signals)
-            rows = [[t, *(v for n in nodes for v in traces[n].get(t, empty))] for t in times]
-            _write_csv(options.trace, header, rows)
+            trace.commit()
+            trace = None
         if options.record:
             for n in nodes:
-                target = options.record.with_name(f"{options.record.stem}-node{n}{options.record.suffix}")
-                _write_recordings(links[n], target)
+                _write_recordings(links[n], _record_path(options.record, n))
     except LinkError as exc:
         print(f"motiontool run: {exc}", file=err)
         return EXIT_CONTROLLER
+    except _OutputError as exc:  # the folder went away or the disk filled up during the run
+        print(f"motiontool run: {exc}", file=err)
+        return EXIT_REFUSED
     finally:
+        if trace is not None:
+            trace.discard()
         close()
     return EXIT_CONTROLLER if failed else EXIT_OK
+
+
+def _record_path(record: Path, node: int) -> Path:
+    return record.with_name(f"{record.stem}-node{node}{record.suffix}")
 
 
 def _node_links(nodes: list[int], options: RunOptions):

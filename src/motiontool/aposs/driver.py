@@ -118,13 +118,19 @@ def check_files(files: list[Path], include_dirs: list[Path] | None = None, out: 
 
 def compile_file(path: Path, output: Path, include_dirs: list[Path] | None = None, debug: bool = False,
                  out: TextIO = sys.stdout) -> int:
-    """`motiontool compile`: write the program image atomically; 1 on errors."""
-    from motiontool.fileio import atomic_write_bytes
+    """`motiontool compile`: write the program image atomically; 1 on errors (a bad output path is found before the
+    compilation: ``cannot write PATH: reason``)."""
+    from motiontool.fileio import atomic_write_bytes, check_writable, write_error
 
-    result = compile_source(path=path, include_dirs=include_dirs, debug=debug)
-    for d in result.diagnostics:
-        print(d.format(), file=out)
-    if not result.ok:
+    try:
+        check_writable(output)
+        result = compile_source(path=path, include_dirs=include_dirs, debug=debug)
+        for d in result.diagnostics:
+            print(d.format(), file=out)
+        if not result.ok:
+            return 1
+        atomic_write_bytes(output, result.image.to_bytes())
+    except OSError as exc:
+        print(f"motiontool compile: {write_error(output, exc)}", file=sys.stderr)
         return 1
-    atomic_write_bytes(output, result.image.to_bytes())
     return 0

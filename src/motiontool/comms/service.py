@@ -14,6 +14,7 @@ from motiontool.comms.protocol import OPERATIONS, PROTOCOL_VERSION, LinkEvent, R
 from motiontool.kernel.arrays import MAX_ARRAY_ELEMENTS
 from motiontool.kernel.controller import Controller, Event
 from motiontool.kernel.errors import ControllerError
+from motiontool.kernel.io import ANALOG_INPUTS, FC_INPUTS, MCO_INPUTS
 from motiontool.kernel.programs import ProgramStore
 from motiontool.kernel.sysvars import read_sysvar, sysvar_name
 from motiontool.kernel.vm import DEFAULT_STACK_SIZE
@@ -256,7 +257,16 @@ class ControllerService:
         self.controller.io.inputs[int(number)] = 1 if value else 0
 
     def op_schedule_input(self, number, value, time_ms) -> None:
-        self.controller.io.schedule(int(time_ms), int(number), int(value))
+        number, value, time_ms = int(number), int(value), int(time_ms)
+        if number in ANALOG_INPUTS:
+            pass
+        elif number not in MCO_INPUTS and number not in FC_INPUTS:
+            raise ValueError(f"no digital input {number} (MCO 305: 1-12, FC 300: 18-33; analog: 53, 54)")
+        elif value not in (0, 1):
+            raise ValueError(f"a digital input is 0 or 1, not {value}")
+        if time_ms < 0:
+            raise ValueError(f"time {time_ms} ms is before the start")
+        self.controller.io.schedule(time_ms, number, value)
 
     def op_stream(self, signals, interval_ms=1) -> None:
         self.flush_stream()
