@@ -19,9 +19,9 @@ from motiontool.resources import resources_path
 COLUMNS = ("number", "name", "description", "group", "default", "min", "max", "unit", "options",
            "conversion_index", "data_type", "changes_during_operation", "seed_lines")
 DATA_TYPES = ("Int8", "Int16", "Int32", "Uint8", "Uint16", "Uint32")
-_NUMBER_RE = re.compile(r"\d\d-\d\d")
+_NUMBER_RE = re.compile(r"[0-9][0-9]-[0-9][0-9]")
 _NAME_RE = re.compile(r"[A-Z][A-Z0-9_]*")
-_OPTION_RE = re.compile(r"(-?\d+)=([^|=]+)")
+_OPTION_RE = re.compile(r"(-?[0-9]+)=([^|=]+)")
 
 
 class ParameterError(ValueError):
@@ -31,9 +31,9 @@ class ParameterError(ValueError):
 def _number(text: str) -> int | float:
     """Parse a plain number ("30", "-1", "1.000"); raise ValueError for anything else."""
     text = text.strip()
-    if re.fullmatch(r"[-+]?\d+", text):
+    if re.fullmatch(r"[-+]?[0-9]{1,30}", text):  # ASCII digits only: \d and int() take every script's digits
         return int(text)
-    if re.fullmatch(r"[-+]?(\d+\.\d*|\.\d+)", text):
+    if re.fullmatch(r"[-+]?([0-9]+\.[0-9]*|\.[0-9]+)", text):
         return float(text)
     raise ValueError(f"{text!r} is not a number")
 
@@ -244,7 +244,7 @@ class ParameterDatabase:
             text = key.strip()
             if _NUMBER_RE.fullmatch(text):
                 param = self._by_index.get(int(text.replace("-", "")))
-            elif text.isdigit():
+            elif re.fullmatch(r"[0-9]{1,9}", text):
                 param = self._by_index.get(int(text))
             else:
                 param = self._by_name.get(text.upper())

@@ -12,18 +12,21 @@ The writer is strict: the type plus all nine fields, names and descriptions quot
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from motiontool.fileio import atomic_write_text
+from motiontool.fileio import MiB, atomic_write_text, read_bytes
 
 DATA_TYPES = ("User", "Global", "System", "Axis", "Temp", "Proc", "Array")
 RECORD_TYPES = ("Date", "Widths", *DATA_TYPES, "Group")
 FIELDS = ("array", "index", "name", "value", "default", "minimum", "maximum", "description", "rw")
-_INT = re.compile(r"[-+]?\d+")
-_NUMBER = re.compile(r"[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?")
-_DATE = re.compile(r"\d{4}:\d{2}:\d{2} \d{2}:\d{2}")
+# ASCII digits only: Python's \d and int() also take other scripts' digits.
+_INT = re.compile(r"[-+]?[0-9]+")
+_NUMBER = re.compile(r"[-+]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][-+]?[0-9]+)?")
+_DATE = re.compile(r"[0-9]{4}:[0-9]{2}:[0-9]{2} [0-9]{2}:[0-9]{2}")
+MAX_BYTES = 16 * MiB  # decisions R4
 
 
 class ZbaError(ValueError):
@@ -105,9 +108,9 @@ def _text(value: str, line: int, what: str) -> str:
 def _number(value: str, line: int, what: str) -> int | float | None:
     if value == "":
         return None
-    if _INT.fullmatch(value):
+    if _INT.fullmatch(value) and len(value) <= 30:  # longer: float() says inf (int() refuses > 4300 digits)
         return int(value)
-    if _NUMBER.fullmatch(value):
+    if _NUMBER.fullmatch(value) and math.isfinite(float(value)):
         return float(value)
     raise ZbaError(f"{what} {value!r} is not a number", line)
 
@@ -115,7 +118,7 @@ def _number(value: str, line: int, what: str) -> int | float | None:
 def _int(value: str, line: int, what: str, required: bool = True) -> int | None:
     if value == "" and not required:
         return None
-    if not _INT.fullmatch(value):
+    if not _INT.fullmatch(value) or len(value) > 30:
         raise ZbaError(f"{what} {value!r} is not an integer", line)
     return int(value)
 
@@ -173,10 +176,11 @@ def parse_zba(text: str) -> ZbaFile:
 
 
 def read_zba(path: str | Path) -> ZbaFile:
+    data = read_bytes(path, MAX_BYTES, "array definition file")
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        text = data.decode("utf-8")
     except UnicodeDecodeError:
-        text = Path(path).read_text(encoding="latin-1")  # spreadsheets often save CSV as ANSI
+        text = data.decode("latin-1")  # spreadsheets often save CSV as ANSI
     return parse_zba(text)
 
 

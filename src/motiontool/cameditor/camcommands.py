@@ -155,8 +155,11 @@ def cmd_import(args: argparse.Namespace) -> int:
     prog = "motiontool cam import"
     try:
         curve = read_dat(args.dat).to_curve()
-    except (DatError, CurveError, CurveArrayError) as exc:
+    except DatError as exc:  # names the .dat file
         print(f"{prog}: error: {exc}", file=sys.stderr)
+        return 1
+    except (CurveError, CurveArrayError) as exc:
+        print(f"{prog}: error: {args.dat}: {exc}", file=sys.stderr)
         return 1
     except OSError as exc:
         print(f"{prog}: error: cannot read {args.dat}: {exc.strerror or exc}", file=sys.stderr)

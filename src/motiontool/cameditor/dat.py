@@ -29,24 +29,31 @@ from pathlib import Path
 
 from motiontool.camcurve.layout import CurveArrayError, decode, encode
 from motiontool.camcurve.model import Curve, CurveError
-from motiontool.fileio import atomic_write_text
+from motiontool.fileio import MiB, atomic_write_text, read_text
 
 DAT_VERSION = 1
 DAT_MAGIC = "# motiontool cam export, format "
 HEADER_KEYS = ("name", "intervals", "start_gradient", "end_gradient", "elements")
 FIRST_VALUE_LINE = len(HEADER_KEYS) + 2  # magic line + header lines, 1-based
+MAX_BYTES = 16 * MiB  # one curve array (decisions R4)
 INT32_MIN, INT32_MAX = -(2 ** 31), 2 ** 31 - 1
-_INT_RE = re.compile(r"[-+]?\d+")
-_FLOAT_RE = re.compile(r"[-+]?(\d+\.\d*|\.\d+|\d+)([eE][-+]?\d+)?")
+# ASCII digits only: Python's \d, isdigit() and int() also take other scripts' digits.
+_INT_RE = re.compile(r"[-+]?[0-9]+")
+_FLOAT_RE = re.compile(r"[-+]?([0-9]+\.[0-9]*|\.[0-9]+|[0-9]+)([eE][-+]?[0-9]+)?")
 
 
 class DatError(ValueError):
-    """A .dat file that does not match the export layout; ``line`` is 1-based."""
+    """A .dat file that does not match the export layout; ``line`` is 1-based, ``source`` the file when known."""
 
-    def __init__(self, message: str, line: int = 0) -> None:
-        super().__init__(f"line {line}: {message}" if line else message)
+    def __init__(self, message: str, line: int = 0, source: str | None = None) -> None:
+        if source:
+            where = f"{source}:{line}: " if line else f"{source}: "
+        else:
+            where = f"line {line}: " if line else ""
+        super().__init__(where + message)
         self.message = message
         self.line = line
+        self.source = source
 
 
 @dataclass(frozen=True)
@@ -100,7 +107,7 @@ def _float(text: str, line: int, key: str) -> float:
 
 
 def _count(text: str, line: int, key: str, minimum: int) -> int:
-    if not text.isdigit() or int(text) < minimum:
+    if not re.fullmatch(r"[0-9]{1,9}", text) or int(text) < minimum:
         raise DatError(f"{key} {text!r} is not an integer >= {minimum}", line)
     return int(text)
 
@@ -113,7 +120,7 @@ def parse_dat(text: str) -> DatCurve:
     if not lines or not lines[0].lstrip("\ufeff").startswith(DAT_MAGIC):
         raise DatError(f"not a motiontool cam export: the first line must be '{DAT_MAGIC}N'", 1)
     version = lines[0].lstrip("\ufeff")[len(DAT_MAGIC):].strip()
-    if not version.isdigit() or not 1 <= int(version) <= DAT_VERSION:
+    if not re.fullmatch(r"[0-9]{1,9}", version) or not 1 <= int(version) <= DAT_VERSION:
         raise DatError(f"unsupported export format {version!r} (this motiontool reads 1..{DAT_VERSION})", 1)
     header: dict[str, str] = {}
     for k, key in enumerate(HEADER_KEYS, start=1):
@@ -138,9 +145,9 @@ def parse_dat(text: str) -> DatCurve:
         item = line.strip()
         if not _INT_RE.fullmatch(item):
             raise DatError(f"expected one integer, got {line!r}", number)
-        value = int(item)
+        value = int(item) if len(item) <= 12 else INT32_MAX + 1
         if not INT32_MIN <= value <= INT32_MAX:
-            raise DatError(f"{value} does not fit a 32-bit array element", number)
+            raise DatError(f"{item} does not fit a 32-bit array element", number)
         values.append(value)
     data = DatCurve(header["name"], tuple(values), intervals, start_gradient, end_gradient)
     curve = data.to_curve()  # refuse an array the controller would refuse (SETCURVE error 191)
@@ -150,8 +157,14 @@ def parse_dat(text: str) -> DatCurve:
 
 
 def read_dat(path: str | Path) -> DatCurve:
+    """Read a .dat file; every DatError names the file (and the line)."""
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        text = read_text(path, MAX_BYTES, "curve export")
     except UnicodeDecodeError:
-        raise DatError("not a text file (invalid UTF-8)") from None
-    return parse_dat(text)
+        raise DatError("not a text file (invalid UTF-8)", 0, str(path)) from None
+    try:
+        return parse_dat(text)
+    except DatError as exc:
+        raise DatError(exc.message, exc.line, str(path)) from None
+    except (CurveError, CurveArrayError) as exc:
+        raise DatError(str(exc), 0, str(path)) from None

@@ -25,10 +25,13 @@ from pathlib import Path
 
 import numpy as np
 
+from motiontool.fileio import MiB, read_bytes
+
 #: Column names proposed for the master and the slave position, best first (a column matches when the name
 #: appears in it as a word, so the scope's "Axis: CMASTERCPOS [4230]" matches too).
 MASTER_NAMES = ("CMASTERCPOS", "MAPOS", "4230", "MASTER_POS", "4105", "MCPOS")
 SLAVE_NAMES = ("APOS", "CPOS", "REG_ACTPOS", "4097")
+MAX_BYTES = 512 * MiB  # decisions R4
 
 
 class TraceError(ValueError):
@@ -72,8 +75,14 @@ class TraceTable:
         return np.interp(ts[inside], tm, m), s[inside]
 
 
+# ASCII digits only (float() would take every script's digits); inf/nan pass to be refused as not finite
+_DECIMAL = re.compile(r"[-+]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][-+]?[0-9]+)?|[-+]?(inf|infinity|nan)", re.IGNORECASE)
+
+
 def _number(text: str, source: str, line: int, column: str) -> float:
     try:
+        if not _DECIMAL.fullmatch(text.strip()):
+            raise ValueError(text)
         value = float(text)
     except ValueError:
         raise TraceError(f"column {column!r}: {text.strip()!r} is not a number", line, source) from None
@@ -169,9 +178,10 @@ def _parse_scope(numbered: list[tuple[int, list[str]]], source: str) -> TraceTab
 def read_trace(path: str | Path) -> TraceTable:
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        data = read_bytes(path, MAX_BYTES, "trace")
+        text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
-        line = path.read_bytes()[:exc.start].count(b"\n") + 1
+        line = data[:exc.start].count(b"\n") + 1
         raise TraceError("not UTF-8 text", line, str(path)) from None
     except OSError as exc:
         raise TraceError(exc.strerror or str(exc), 0, str(path)) from None

@@ -23,7 +23,7 @@ from motiontool.camcurve.model import (
     FixPoint,
     StartStopPair,
 )
-from motiontool.fileio import atomic_write_text
+from motiontool.fileio import MiB, atomic_write_text, read_bytes
 from motiontool.paramdb import Parameter, ParameterError, database
 
 FORMAT_VERSION = 2  # 2: fix point types may be motion laws (LAW_TYPES); written only by files that use them
@@ -31,6 +31,7 @@ LAW_FORMAT = 2
 MAGIC = "# motiontool configuration file, format "
 EXTENSIONS = (".zbc", ".cnf")
 VALUES_PER_LINE = 16
+MAX_BYTES = 64 * MiB  # a full array memory (1 000 000 values) is some 12 MiB of text (decisions R4)
 INT32_MIN, INT32_MAX = -(2 ** 31), 2 ** 31 - 1
 PARAMETER_SECTIONS = ("global", "axis", "user")
 
@@ -39,9 +40,10 @@ CURVE_KEYS = ("master_length", "intervals", "interpolation", "curve_type", "slav
               "correction_start", "correction_end", "max_correction", "cycles_per_min", "master_marker_pos",
               "slave_marker_pos", "start_gradient", "end_gradient")
 _NUMBER_KEYS = CURVE_KEYS[4:]
-_INT_RE = re.compile(r"[-+]?\d+")
-_FLOAT_RE = re.compile(r"[-+]?(\d+\.\d*|\.\d+|\d+)([eE][-+]?\d+)?")
-_PARAM_KEY_RE = re.compile(r"(\d\d-\d\d)(?:\s+([A-Za-z][A-Za-z0-9_]*))?")
+# ASCII digits only: Python's \d and int() also take other scripts' digits ("٥٠" would load as 50).
+_INT_RE = re.compile(r"[-+]?[0-9]+")
+_FLOAT_RE = re.compile(r"[-+]?([0-9]+\.[0-9]*|\.[0-9]+|[0-9]+)([eE][-+]?[0-9]+)?")
+_PARAM_KEY_RE = re.compile(r"([0-9][0-9]-[0-9][0-9])(?:[ \t]+([A-Za-z][A-Za-z0-9_]*))?")
 
 
 class ConfigError(ValueError):
@@ -207,7 +209,7 @@ def write_config(path: str | Path, config: ConfigFile) -> None:
 # -- reading -------------------------------------------------------------------------------------------------------
 def _parse_number(text: str, line: int, what: str) -> int | float:
     text = text.strip()
-    if _INT_RE.fullmatch(text):
+    if _INT_RE.fullmatch(text) and len(text) <= 30:  # longer: float() says inf (int() would refuse > 4300 digits)
         return int(text)
     if _FLOAT_RE.fullmatch(text):
         value = float(text)
@@ -308,7 +310,7 @@ class _Reader:
         if not first.startswith(MAGIC):
             raise self.error(f"not a motiontool configuration file: the first line must be '{MAGIC}N'", 1)
         version = first[len(MAGIC):].strip()
-        if not version.isdigit():
+        if not re.fullmatch(r"[0-9]{1,9}", version):
             raise self.error(f"format version {version!r} is not a number", 1)
         if int(version) > FORMAT_VERSION:
             raise self.error(f"format {int(version)} is newer than this motiontool reads (up to {FORMAT_VERSION}); "
@@ -368,7 +370,7 @@ class _Reader:
             if entry.values:
                 raise self.error(f"array {entry.name}: size must come before the values", number)
             text = value.strip()
-            if not text.isdigit() or int(text) < 1:
+            if not re.fullmatch(r"[0-9]{1,9}", text) or int(text) < 1:
                 raise self.error(f"array {entry.name}: size {text!r} is not a positive integer", number)
             entry.size, entry.size_line = int(text), number
         elif key == "curve":
@@ -382,9 +384,9 @@ class _Reader:
             for word in value.split():
                 if not _INT_RE.fullmatch(word):
                     raise self.error(f"array {entry.name}: {word!r} is not an integer", number)
-                v = int(word)
+                v = int(word) if len(word) <= 12 else INT32_MAX + 1
                 if not INT32_MIN <= v <= INT32_MAX:
-                    raise self.error(f"array {entry.name}: {v} does not fit a 32-bit long", number)
+                    raise self.error(f"array {entry.name}: {word} does not fit a 32-bit long", number)
                 entry.values.append(v)
             if len(entry.values) > entry.size:
                 raise self.error(f"array {entry.name}: more than size = {entry.size} values", number)
@@ -424,7 +426,7 @@ class _Reader:
             text, line = entry.keys[key]
             kw[key] = _parse_number(text, line, f"curve {name}: {key}")
         text, line = entry.keys["intervals"]
-        if not _INT_RE.fullmatch(text):
+        if not _INT_RE.fullmatch(text) or len(text) > 12:
             raise self.error(f"curve {name}: intervals {text!r} is not an integer", line)
         kw["intervals"] = int(text)
         text, line = entry.keys["interpolation"]
@@ -535,7 +537,7 @@ def read_config(source: str | Path) -> ConfigFile:
         return _Reader(source, None).run()
     path = Path(source)
     try:
-        data = path.read_bytes()
+        data = read_bytes(path, MAX_BYTES, "configuration file")
     except OSError as exc:
         raise ConfigError(f"cannot read: {exc.strerror or exc}", 0, str(path)) from None
     try:

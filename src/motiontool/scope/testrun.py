@@ -16,11 +16,13 @@ from pathlib import Path
 
 import numpy as np
 
+from motiontool.fileio import MiB, read_bytes
 from motiontool.scope.curves import Curve, Scope, Source
 
 SIGNATURE = re.compile(r"^\s*(aposs\s+)?test\s*run\b", re.IGNORECASE)
 TIME_NAMES = {"time", "t", "ms", "time[ms]", "time (ms)", "time_ms"}
 MAX_ROWS = 10_000_000
+MAX_BYTES = 512 * MiB  # decisions R4
 
 
 class NotTestrun(ValueError):
@@ -38,7 +40,12 @@ def _split(line: str) -> list[str]:
     return line.split()
 
 
+_DECIMAL = re.compile(r"[-+]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][-+]?[0-9]+)?")  # ASCII digits only (not \d)
+
+
 def _number(text: str) -> float:
+    if not _DECIMAL.fullmatch(text.strip()):
+        raise ValueError(text)
     value = float(text)
     if math.isnan(value) or math.isinf(value):
         raise ValueError(text)
@@ -113,8 +120,9 @@ def _is_number(text: str) -> bool:
 
 def read_testrun(path: Path | str) -> Scope:
     path = Path(path)
+    data = read_bytes(path, MAX_BYTES, "Testrun file")
     try:
-        text = path.read_text(encoding="utf-8")
+        text = data.decode("utf-8")
     except UnicodeDecodeError:
-        text = path.read_text(encoding="latin-1")  # old Windows files
+        text = data.decode("latin-1")  # old Windows files
     return parse_testrun(text, str(path))

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from motiontool.fileio import atomic_write_text
+from motiontool.fileio import MiB, atomic_write_text, read_text
 from motiontool.scope import select
 from motiontool.scope.buffer import RingBuffer
 from motiontool.scope.curves import (
@@ -36,6 +36,7 @@ VERSION = 2                 # the newest version read and written; 2 added sourc
 SELECT_VERSION = 2          # a file is written as version 1 unless a curve has a byte/word/bit selection
 ENCODING = "f8le-zlib-base64"
 MAX_SAMPLES = 100_000_000   # per curve: refuse absurd counts before allocating
+MAX_BYTES = 1024 * MiB      # ten million samples per curve are some 200 MiB (decisions R4)
 
 
 OPTIONAL = {"controller": int, "share": str, "bit_mask": int, "select": str}   # fields that may be null
@@ -104,7 +105,7 @@ def save(scope: Scope, path: Path | str, with_data: bool = True) -> None:
 def load(path: Path | str) -> Scope:
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        text = read_text(path, MAX_BYTES, "oscilloscope file")
     except UnicodeDecodeError as exc:
         raise ZboError(f"{path}: not UTF-8 text (byte {exc.start})") from None
     return loads(text, str(path))

@@ -464,8 +464,11 @@ class CamEditor(EditsMixin, QMainWindow):
             return False
         try:
             curve = read_dat(path).to_curve()
-        except (DatError, OSError) as exc:
-            self.message(f"Import refused: {path.name}: {exc}")
+        except DatError as exc:  # names the file and line
+            self.message(f"Import refused: {exc}")
+            return False
+        except OSError as exc:
+            self.message(f"Import refused: {path.name}: {exc.strerror or exc}")
             return False
         return self.set_curve(curve, "Import")
 
