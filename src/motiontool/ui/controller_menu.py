@@ -60,6 +60,14 @@ def _link(w, controller_id: int | None = None):
     return w.controllers.link(controller_id, interface=w.connection.interface_key)
 
 
+def _write_failed(w, title: str, path: Path, exc: OSError) -> None:
+    from motiontool.fileio import write_error
+    from motiontool.ui.file_errors import save_failed
+
+    w.messages.ide(f"{title}: {write_error(path, exc)}")
+    save_failed(w, title, path, exc, "Nothing on the controller was changed.")
+
+
 def save_parameters(w, path: Path | None = None) -> bool:
     """Parameters → Save to file (DG 2884-2892): global, axis and user parameters and all arrays → .zbc."""
     link = _link(w)
@@ -74,7 +82,10 @@ def save_parameters(w, path: Path | None = None) -> bool:
     transfer, zbc = _config_io()
     try:
         zbc.write_config(path, transfer.upload_config(link))
-    except (LinkError, zbc.ConfigError, OSError) as exc:
+    except OSError as exc:
+        _write_failed(w, "Save to file", path, exc)
+        return False
+    except (LinkError, zbc.ConfigError) as exc:
         w.messages.ide(f"Save to file: {exc}")
         return False
     w.messages.ide(f"Controller {w.bridge.controller_id}: configuration saved to {path}")
@@ -405,7 +416,10 @@ def diagnostic_report(w, path: Path | None = None) -> bool:
     zbc = _config_io()[1]
     try:
         atomic_write_text(path, diagnostic_report_text(link, w.bridge.controller_id))
-    except (LinkError, zbc.ConfigError, OSError) as exc:
+    except OSError as exc:
+        _write_failed(w, "Diagnostic Report", path, exc)
+        return False
+    except (LinkError, zbc.ConfigError) as exc:
         w.messages.ide(f"Diagnostic Report: {exc}")
         return False
     w.messages.ide(f"Controller {w.bridge.controller_id}: diagnostic report written to {path}")

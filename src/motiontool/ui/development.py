@@ -13,7 +13,7 @@ from motiontool.aposs.driver import CompileResult, compile_source
 from motiontool.comms.protocol import LinkError
 from motiontool.dpl.driver import CheckResult, check_source
 from motiontool.dpl.image import DplImage
-from motiontool.fileio import atomic_write_bytes
+from motiontool.fileio import atomic_write_bytes, write_error
 from motiontool.ui.compiler_settings import CompilerSettings
 from motiontool.ui.compiler_settings import check as compiler_checks
 from motiontool.ui.controllers import APC_SIM, InterfaceConfig
@@ -131,7 +131,14 @@ class Development:
             if not chosen:
                 return False
             target = Path(chosen)
-        atomic_write_bytes(target, outcome.result.image.to_bytes())
+        try:
+            atomic_write_bytes(target, outcome.result.image.to_bytes())
+        except OSError as exc:
+            from motiontool.ui.file_errors import save_failed
+
+            self.w.messages.ide(f"Compile to file: {write_error(target, exc)}")
+            save_failed(self.w, "Compile to file", target, exc, "The program was compiled but not written.")
+            return False
         self.w.messages.ide(f"Compiled to {target}")
         return True
 

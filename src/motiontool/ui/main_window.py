@@ -222,11 +222,18 @@ class MainWindow(QMainWindow):
             if not chosen:
                 return False
             target = Path(chosen)
-        atomic_write_text(target, editor.toPlainText())
+        try:
+            atomic_write_text(target, editor.toPlainText())
+        except OSError as exc:  # the buffer, its autosave and the window stay as they are (decisions R7)
+            from motiontool.ui.file_errors import save_failed
+
+            save_failed(self, "Save", target, exc, "Nothing was lost: the program is still open in the editor. "
+                        "Save it somewhere else with File → Save as.")
+            return False
         editor.setProperty("path", str(target.resolve()))
         editor.set_language("dpl" if is_dpl(target) else "aposs")
         editor.mark_saved()
-        editor.save_bookmarks(self.bookmark_store, path=target.resolve())
+        self._save_bookmarks(editor, target.resolve())
         self.recovery.discard(editor)
         self._remember_recent(target)
         self._update_tab_title(editor)
@@ -254,11 +261,17 @@ class MainWindow(QMainWindow):
             if answer == QMessageBox.StandardButton.Save and not self.save(editor=editor):
                 return False
         if editor.property("path"):
-            editor.save_bookmarks(self.bookmark_store, path=editor.property("path"))
+            self._save_bookmarks(editor, editor.property("path"))
         self.recovery.discard(editor)
         self.tabs.removeTab(index)
         editor.deleteLater()
         return True
+
+    def _save_bookmarks(self, editor: CodeEditor, path) -> None:
+        try:
+            editor.save_bookmarks(self.bookmark_store, path=path)
+        except OSError as exc:  # the program itself is saved; its bookmarks are a convenience
+            self.messages.ide(f"Bookmarks not saved: cannot write {self.bookmark_store.path}: {exc.strerror or exc}")
 
     # --- recent files / settings ------------------------------------------------------------------------------
     def recent_files(self) -> list[str]:

@@ -163,7 +163,12 @@ def _messages_menu(w, menu: QMenu) -> None:
     def choose() -> None:
         chosen, _ = QFileDialog.getSaveFileName(w, "Log file", "messages.log", "Log files (*.log *.txt)")
         if chosen:
-            w.messages.start_log(Path(chosen))
+            try:
+                w.messages.start_log(Path(chosen))
+            except OSError as exc:
+                from motiontool.ui.file_errors import save_failed
+
+                save_failed(w, "Log file", chosen, exc, "Messages are not logged.")
         refresh()
 
     start.triggered.connect(choose)

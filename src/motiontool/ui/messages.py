@@ -5,6 +5,7 @@ controller error `[01] error 71: … (line 6)`) asks the window to show that lin
 
 from __future__ import annotations
 
+import contextlib
 import re
 from pathlib import Path
 
@@ -86,12 +87,20 @@ class MessagesPane(QPlainTextEdit):
 
     def update_log(self) -> None:
         if self._log is not None and self._pending:
-            self._log.write("\n".join(self._pending) + "\n")
-            self._log.flush()
+            try:
+                self._log.write("\n".join(self._pending) + "\n")
+                self._log.flush()
+            except OSError as exc:  # a full disk or a share gone: stop logging, say so, keep the pane going
+                log, self._log = self._log, None
+                with contextlib.suppress(OSError):
+                    log.close()
+                self._append(f"Log file stopped: cannot write {log.name}: {exc.strerror or exc}")
             self._pending.clear()
 
     def stop_log(self) -> None:
         if self._log is not None:
             self.update_log()
-            self._log.close()
+        if self._log is not None:
+            with contextlib.suppress(OSError):
+                self._log.close()
             self._log = None

@@ -25,6 +25,7 @@ from PySide6.QtWidgets import (
 from motiontool.arrayeditor.rows import ArrayList, Row
 from motiontool.arrayeditor.zba import ZbaError, read_zba, write_zba
 from motiontool.comms.protocol import LinkError
+from motiontool.fileio import reason
 
 COLUMNS = ("Name", "Array", "Index", "R/W", "Value", "Controller", "Default", "Minimum", "Maximum", "Description")
 VALUE, CONTROLLER = 4, 5
@@ -316,7 +317,13 @@ class ArrayEditor(QMainWindow):
         try:
             zba = self.data_list.to_zba()
             write_zba(path, zba)
-        except (ZbaError, OSError) as exc:
+        except OSError as exc:  # the editor keeps its values and its file (decisions R7)
+            box = QMessageBox(QMessageBox.Icon.Critical, "Array Editor", f"Cannot write {path}:\n{reason(exc)}.",
+                              QMessageBox.StandardButton.Ok, self)
+            box.setInformativeText("The values are still in the editor: save them somewhere else.")
+            box.exec()
+            return False
+        except ZbaError as exc:
             self._error(f"{path}: {exc}")
             return False
         self.path = path

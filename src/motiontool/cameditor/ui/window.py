@@ -46,6 +46,7 @@ from motiontool.cameditor.ui.trace import TraceOverlay
 from motiontool.cameditor.zbc import EXTENSIONS, ArrayEntry, ConfigError, ConfigFile, read_config, write_config
 from motiontool.comms.link import Link
 from motiontool.comms.protocol import LinkError
+from motiontool.fileio import reason, write_error
 
 FILE_FILTER = "CAM configuration (*.zbc *.cnf);;All files (*)"
 
@@ -408,7 +409,10 @@ class CamEditor(EditsMixin, QMainWindow):
             path = path.with_suffix(".zbc")
         try:
             write_config(path, self.config())
-        except (CurveError, ConfigError, OSError) as exc:
+        except OSError as exc:  # the curves stay in the editor, still marked changed (decisions R7)
+            self._write_failed("Save", path, exc, "The curves are still in the editor: save them somewhere else.")
+            return False
+        except (CurveError, ConfigError) as exc:
             self.message(f"Not saved: {exc}")
             return False
         self.path = path
@@ -483,11 +487,22 @@ class CamEditor(EditsMixin, QMainWindow):
     def export_dat(self, path: Path) -> bool:
         try:
             write_dat(path, self.curve())
-        except (CurveError, OSError) as exc:
+        except OSError as exc:
+            self._write_failed("Export", path, exc, "The curve is unchanged.")
+            return False
+        except CurveError as exc:
             self.message(f"Export failed: {exc}")
             return False
         self.message(f"Exported {Path(path).name}", error=False)
         return True
+
+    def _write_failed(self, title: str, path: Path, exc: OSError, kept: str) -> None:
+        self.message(f"{title} failed: {write_error(path, exc)}")
+        if self.confirm:
+            box = QMessageBox(QMessageBox.Icon.Critical, f"CAM-Editor — {title}",
+                              f"Cannot write {path}:\n{reason(exc)}.", QMessageBox.StandardButton.Ok, self)
+            box.setInformativeText(kept)
+            box.exec()
 
     def closeEvent(self, event) -> None:  # noqa: N802 - Qt override
         if self._discard_ok():

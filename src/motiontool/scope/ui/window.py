@@ -25,6 +25,7 @@ from PySide6.QtWidgets import (
 )
 
 from motiontool.comms.protocol import LinkError
+from motiontool.fileio import reason
 from motiontool.scope import derived, zbo
 from motiontool.scope.acquisition import (
     FreeRun,
@@ -422,7 +423,14 @@ class ScopeWindow(RunControl, QMainWindow):
         path, _ = QFileDialog.getSaveFileName(self, "Save oscilloscope", str(self.path or ""),
                                               "Oscilloscope files (*.zbo)")
         if path:
-            self.save_to(path if path.endswith(".zbo") else path + ".zbo", with_data=with_data)
+            path = path if path.endswith(".zbo") else path + ".zbo"
+            try:
+                self.save_to(path, with_data=with_data)
+            except OSError as exc:  # the window and its curves stay as they are (decisions R7)
+                box = QMessageBox(QMessageBox.Icon.Critical, "Save", f"Cannot write {path}:\n{reason(exc)}.",
+                                  QMessageBox.StandardButton.Ok, self)
+                box.setInformativeText("The curves are still in this window: save them somewhere else.")
+                box.exec()
 
     def export_to(self, path: Path | str) -> None:
         """Export the curves: MDF4 for a .mf4 path (needs asammdf: Mdf4Unavailable without it), else CSV."""
@@ -440,7 +448,9 @@ class ScopeWindow(RunControl, QMainWindow):
             path += ".mf4"
         try:
             self.export_to(path)
-        except (Mdf4Unavailable, OSError, ValueError) as exc:
+        except OSError as exc:
+            QMessageBox.critical(self, "Export", f"Cannot write {path}:\n{reason(exc)}.")
+        except (Mdf4Unavailable, ValueError) as exc:
             QMessageBox.warning(self, "Export", str(exc))
 
     def open_dialog(self) -> None:

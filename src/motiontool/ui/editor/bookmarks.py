@@ -9,10 +9,10 @@ application's config directory, maps the absolute path of each program to its bo
 from __future__ import annotations
 
 import json
-import os
-import tempfile
 from bisect import bisect_left, bisect_right
 from pathlib import Path
+
+from motiontool.fileio import MiB, atomic_write_text, read_text
 
 _VERSION = 1
 
@@ -45,7 +45,7 @@ class BookmarkStore:
 
     def _read(self) -> dict[str, list[int]]:
         try:
-            data = json.loads(self.path.read_text(encoding="utf-8"))
+            data = json.loads(read_text(self.path, 16 * MiB, "bookmarks file"))
         except (OSError, ValueError):
             return {}  # missing or damaged store: no bookmarks rather than an error at file open
         files = data.get("files") if isinstance(data, dict) else None
@@ -68,14 +68,7 @@ class BookmarkStore:
         elif files.pop(key, None) is None and not self.path.exists():
             return
         self.path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=self.path.name, suffix=".tmp", dir=self.path.parent)
-        try:
-            with os.fdopen(fd, "w", encoding="utf-8") as fh:
-                json.dump({"version": _VERSION, "files": dict(sorted(files.items()))}, fh, indent=1)
-            os.replace(tmp, self.path)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
+        atomic_write_text(self.path, json.dumps({"version": _VERSION, "files": dict(sorted(files.items()))}, indent=1))
 
     def programs(self) -> list[str]:
         """The keys (absolute paths) of all programs with saved bookmarks."""

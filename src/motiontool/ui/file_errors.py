@@ -1,0 +1,18 @@
+"""What the IDE says when a file cannot be written: one modal message naming the file and the reason, and what
+happened to the user's work (decisions R7). Nothing is lost: the caller keeps its buffer and its window open."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from PySide6.QtWidgets import QMessageBox, QWidget
+
+from motiontool.fileio import reason
+
+
+def save_failed(parent: QWidget | None, title: str, path: Path | str, exc: OSError, kept: str) -> None:
+    """``kept``: a sentence on what the user still has, e.g. "The program is still open in the editor"."""
+    box = QMessageBox(QMessageBox.Icon.Critical, title, f"Cannot write {path}:\n{reason(exc)}.",
+                      QMessageBox.StandardButton.Ok, parent)
+    box.setInformativeText(kept)
+    box.exec()

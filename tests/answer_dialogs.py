@@ -1,0 +1,72 @@
+"""Answer the modal dialogs an action opens, as a user would: read the message, click its button, choose a file.
+
+    with Answers(qtbot, QMessageBox.StandardButton.Save, QMessageBox.StandardButton.Ok) as answers:
+        window.actions_by_text["Exit Program"].trigger()
+    assert "Cannot write" in answers.seen[1].text
+
+Each answer is used for the next modal dialog that appears: a StandardButton is clicked with the mouse on a
+QMessageBox; a ``ChooseFile(path, then=...)`` types the name into a QFileDialog and accepts it (``then`` runs
+right after, before the application gets the name back: e.g. the folder disappears, like a share going away).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from PySide6.QtCore import Qt, QTimer
+from PySide6.QtWidgets import QApplication, QFileDialog, QMessageBox
+
+
+@dataclass
+class ChooseFile:
+    path: str
+    then: Callable[[], None] | None = None
+
+
+@dataclass
+class Seen:
+    kind: str
+    title: str
+    text: str
+    informative: str = ""
+
+
+class Answers:
+    def __init__(self, qtbot, *answers):
+        self.qtbot = qtbot
+        self.answers = list(answers)
+        self.seen: list[Seen] = []
+        self._handled: set[int] = set()
+        self._timer = QTimer()
+        self._timer.setInterval(20)
+        self._timer.timeout.connect(self._poll)
+
+    def __enter__(self) -> Answers:
+        self._timer.start()
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self._timer.stop()
+        if exc[0] is None:
+            assert not self.answers, f"dialogs that never came: {self.answers}; seen: {self.seen}"
+
+    def _poll(self) -> None:
+        dialog = QApplication.activeModalWidget()
+        if dialog is None or id(dialog) in self._handled or not dialog.isVisible():
+            return
+        self._handled.add(id(dialog))
+        if not self.answers:
+            raise AssertionError(f"an unexpected dialog: {dialog.windowTitle()!r}")
+        answer = self.answers.pop(0)
+        if isinstance(dialog, QMessageBox):
+            self.seen.append(Seen("message", dialog.windowTitle(), dialog.text(), dialog.informativeText()))
+            self.qtbot.mouseClick(dialog.button(answer), Qt.MouseButton.LeftButton)
+        elif isinstance(dialog, QFileDialog):
+            self.seen.append(Seen("file", dialog.windowTitle(), answer.path))
+            dialog.selectFile(answer.path)
+            dialog.accept()
+            if answer.then is not None:
+                answer.then()
+        else:
+            raise AssertionError(f"no way to answer {type(dialog).__name__} {dialog.windowTitle()!r}")
