@@ -67,14 +67,10 @@ def run_gui(open_file: Path | None = None, screenshot: Path | None = None) -> in
             return 1
     elif window.open_last_file() is None:
         window.new_file()
-    if screenshot is None and window.recovery.pending():
-        from PySide6.QtWidgets import QMessageBox
+    if screenshot is None:  # only autosaves of IDEs that are gone (decisions R8)
+        from motiontool.ui.recovery import offer_recovery
 
-        if QMessageBox.question(window, "Recovery", "motiontool was not closed properly. Restore the unsaved "
-                                "programs?") == QMessageBox.StandardButton.Yes:
-            window.recover()
-        else:
-            window.recovery.clear()
+        offer_recovery(window)
     window.development.connect_default()  # the IDE starts on the embedded simulated controller
     window.show()
     if screenshot is None:

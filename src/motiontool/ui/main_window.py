@@ -28,7 +28,7 @@ from motiontool.ui.development import Development
 from motiontool.ui.editor.bookmarks import BookmarkStore
 from motiontool.ui.editor.code_editor import CodeEditor
 from motiontool.ui.messages import MessagesPane
-from motiontool.ui.recovery import Recovery
+from motiontool.ui.recovery import Autosave, Recovery
 
 LIVE_CHECK_MS = 600   # live diagnostics after this pause in typing
 MAX_RECENT = 8
@@ -101,10 +101,7 @@ class MainWindow(QMainWindow):
         self._live.setSingleShot(True)
         self._live.setInterval(LIVE_CHECK_MS)
         self._live.timeout.connect(self.live_check)
-        self._autosave = QTimer(self)
-        self._autosave.setInterval(30_000)
-        self._autosave.timeout.connect(self.autosave)
-        self._autosave.start()
+        self.autosaver = Autosave(self, self.recovery)  # a moment after typing stops (decisions R8)
         self.messages.ide(f"motiontool {__version__} — APOSS programming for the MCO 305")
         self.restoreGeometry(self.settings.value("window/geometry", b""))
         self.restoreState(self.settings.value("window/state", b""))
@@ -192,6 +189,7 @@ class MainWindow(QMainWindow):
         editor.set_language("dpl" if is_dpl(path or title) else "aposs")
         editor.cursorLineColChanged.connect(lambda line, col: self.cursor_label.setText(f"{line}:{col}"))
         editor.textChanged.connect(self._live.start)
+        editor.textChanged.connect(self.autosaver.changed)
         editor.document().modificationChanged.connect(lambda _m, *, e=editor: self._update_tab_title(e))
         editor.openLocationRequested.connect(self._open_location)
         self.tabs.setCurrentIndex(self.tabs.addTab(editor, title))
@@ -295,6 +293,7 @@ class MainWindow(QMainWindow):
         self.settings.setValue("window/geometry", self.saveGeometry())
         self.settings.setValue("window/state", self.saveState())
         self.messages.stop_log()
+        self.recovery.close()  # every buffer was saved or discarded
         self.connection.window_closed()
         event.accept()
 
@@ -348,20 +347,23 @@ class MainWindow(QMainWindow):
 
     # --- autosave and crash recovery -------------------------------------------------------------------------
     def autosave(self) -> None:
-        for editor in self.editors():
-            if editor.document().isModified():
-                self.recovery.store(editor, editor.property("path") or "", editor.toPlainText())
+        self.autosaver.run()
 
     def recover(self) -> int:
-        """Reopen the buffers a crashed session left in the recovery folder; returns how many."""
-        count = 0
-        for original, text in self.recovery.pending():
-            editor = self._add_editor(Path(original).name if original else "Recovered", text,
+        """Reopen the buffers IDEs that are gone left in the recovery folder; returns how many. Each is autosaved
+        into this IDE's session before the old copies are deleted."""
+        buffers = self.recovery.pending()
+        for buffer in buffers:
+            original = buffer.original
+            editor = self._add_editor(Path(original).name if original else "Recovered", buffer.text,
                                       Path(original) if original else None)
             editor.document().setModified(True)
-            count += 1
-        self.recovery.clear()
-        return count
+        self.autosaver.run()
+        if self.autosaver.failed is None:
+            self.recovery.forget_abandoned(delete=True)
+        else:  # the copies could not be made: keep the old ones for the next start
+            self.recovery.forget_abandoned(delete=False)
+        return len(buffers)
 
     # --- controller ------------------------------------------------------------------------------------------
     def _controller_error(self, time_ms: int, number: int, text: str, line, cid: int) -> None:
