@@ -47,8 +47,8 @@ def test_sample_syntax_check_and_error_at_the_right_line(window, qtbot):
     text = window.messages.toPlainText()
     assert ":5:1: error: POSA needs more arguments" in text
     assert editor.caret_line_col()[0] == 5
-    window.live_check()
-    assert any(d[0] == 5 and d[2] == "error" for d in editor.diagnostics())
+    window.live_check()  # runs off the GUI thread (tests/ui/test_live_check.py)
+    qtbot.waitUntil(lambda: any(d[0] == 5 and d[2] == "error" for d in editor.diagnostics()), timeout=10_000)
 
 
 def test_execute_prints_in_the_messages_window_and_esc_breaks(window, qtbot):

@@ -12,7 +12,7 @@ from motiontool.aposs import ast, image, semantics
 from motiontool.aposs.ast import DOUBLE, LONG
 from motiontool.aposs.codegen_expr import ExpressionCode
 from motiontool.aposs.constexpr import fold_int
-from motiontool.aposs.diagnostics import CompileError, DiagnosticSink, Location
+from motiontool.aposs.diagnostics import Cancelled, CompileError, DiagnosticSink, Location
 from motiontool.aposs.image import BINOP_OF, PSEUDO_ARRAYS, SELECTOR_CODES, Op
 
 
@@ -240,7 +240,11 @@ class CodeGen(ExpressionCode):
         for stmt in body:
             self.statement(stmt)
 
+    cancelled = None  # a callable: True when the caller no longer wants the result
+
     def statement(self, stmt: ast.Stmt) -> None:
+        if self.cancelled is not None and self.cancelled():
+            raise Cancelled
         try:
             if not isinstance(stmt, (ast.Dim, ast.VarDecl, ast.Pragma, ast.Label)):
                 self.mark_statement(stmt)

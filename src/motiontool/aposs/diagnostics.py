@@ -18,6 +18,10 @@ class Location(NamedTuple):
         return f"{self.file}:{self.line}:{self.col}"
 
 
+class Cancelled(Exception):  # noqa: N818 - a request, not an error
+    """The caller no longer wants this compilation (the IDE's live check after a newer edit)."""
+
+
 @dataclass(frozen=True)
 class Diagnostic:
     severity: str  # "error" | "warning" | "note"

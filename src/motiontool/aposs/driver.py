@@ -51,22 +51,26 @@ def _parameter_lookup(name: str) -> int | None:
 
 
 def compile_source(text: str | None = None, path: Path | str | None = None, *, include_dirs=None,
-                   debug: bool = False, name: str | None = None) -> CompileResult:
-    """Compile a program given as text (named `path` for messages and includes) or read from `path`."""
+                   debug: bool = False, name: str | None = None, cancelled=None) -> CompileResult:
+    """Compile a program given as text (named `path` for messages and includes) or read from `path`.
+
+    ``cancelled``: a callable polled on the way (per line, statement); when it says True the compilation stops with
+    diagnostics.Cancelled (the IDE's live check after a newer edit)."""
     # The compiler makes some 10^5 tokens and nodes and no garbage cycles worth collecting on the way; the
     # cyclic collector's passes over them took a third of the compile time (benchmarks/compile_speed.py).
     collecting = gc.isenabled()
     gc.disable()
     try:
-        return _compile(text, path, include_dirs, debug, name)
+        return _compile(text, path, include_dirs, debug, name, cancelled)
     finally:
         if collecting:
             gc.enable()
 
 
-def _compile(text, path, include_dirs, debug, name) -> CompileResult:
+def _compile(text, path, include_dirs, debug, name, cancelled) -> CompileResult:
     sink = DiagnosticSink()
     pre = Preprocessor(system_include_dirs(include_dirs))
+    pre.cancelled = cancelled
     label = str(path) if path is not None else "<input>"
     files: list[str] = []
     try:
@@ -74,7 +78,7 @@ def _compile(text, path, include_dirs, debug, name) -> CompileResult:
         files = [f.path for f in result.files]
         for w in result.warnings:
             sink.add(w)
-        program = parse(result.tokens, parameter_lookup=_parameter_lookup)
+        program = parse(result.tokens, parameter_lookup=_parameter_lookup, cancelled=cancelled)
     except CompileError as exc:
         files = files or [f.path for f in pre.result.files]
         sink.add(exc.diagnostic)
@@ -82,7 +86,9 @@ def _compile(text, path, include_dirs, debug, name) -> CompileResult:
         return CompileResult(None, _ordered(sink.items), files)
     try:
         check_program(program, sink)
-        image = CodeGen(program, sink, name or Path(label).stem, debug, files).generate()
+        codegen = CodeGen(program, sink, name or Path(label).stem, debug, files)
+        codegen.cancelled = cancelled
+        image = codegen.generate()
     except RecursionError:
         sink.error("program nested too deeply", program.loc)
         image = None

@@ -10,7 +10,7 @@ from __future__ import annotations
 from motiontool.aposs import ast
 from motiontool.aposs.commands import CommandTable, command_table
 from motiontool.aposs.constexpr import fold_int
-from motiontool.aposs.diagnostics import CompileError
+from motiontool.aposs.diagnostics import Cancelled, CompileError
 from motiontool.aposs.exprparse import ExpressionParser, describe
 from motiontool.aposs.lexer import EOF, IDENT, NEWLINE, Token
 from motiontool.aposs.preprocess import PRAGMA
@@ -31,6 +31,7 @@ class Parser(ExpressionParser):
         self.function_names: set[str] = set()
         self._parameter_lookup = parameter_lookup
         self._in_function = False
+        self.cancelled = None  # a callable: True when the caller no longer wants the result
 
     def parameter_number(self, name: str) -> int | None:
         return self._parameter_lookup(name) if self._parameter_lookup else None
@@ -43,6 +44,8 @@ class Parser(ExpressionParser):
             t = self.tok
             if t.kind == EOF:
                 return program
+            if self.cancelled is not None and self.cancelled():
+                raise Cancelled
             if t.is_word("SUBMAINPROG"):
                 if program.subarea is not None:
                     raise self.error(f"only one SUBMAINPROG area is allowed (the first is at {program.subarea})")
@@ -527,8 +530,10 @@ _KEYWORD_HANDLERS = {"IF", "WHILE", "REPEAT", "SWITCH", "LOOP", "GOTO", "GOSUB",
                      "DIM", "ON"}
 
 
-def parse(tokens: list[Token], commands: CommandTable | None = None, parameter_lookup=None) -> ast.Program:
+def parse(tokens: list[Token], commands: CommandTable | None = None, parameter_lookup=None,
+          cancelled=None) -> ast.Program:
     parser = Parser(tokens, commands, parameter_lookup)
+    parser.cancelled = cancelled
     try:
         return parser.parse_program()
     except RecursionError:

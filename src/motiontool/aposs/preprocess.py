@@ -10,7 +10,7 @@ import time
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-from motiontool.aposs.diagnostics import CompileError, Diagnostic, Location
+from motiontool.aposs.diagnostics import Cancelled, CompileError, Diagnostic, Location
 from motiontool.aposs.lexer import DIRECTIVE, EOF, IDENT, INT, NEWLINE, OP, STRING, Token, tokenize
 from motiontool.fileio import MiB, read_bytes
 
@@ -73,6 +73,7 @@ class Preprocessor:
         self.result = PreprocessResult([])
         self._stamp = time.localtime()
         self._expanded = 0  # tokens made by macro expansion so far (MAX_EXPANDED_TOKENS)
+        self.cancelled = None  # a callable: True when the caller no longer wants the result (checked per line)
         for name, value in (defines or {}).items():
             loc = Location("<command line>", 1, 1)
             self.macros[name] = Macro(name, None, tokenize(value, "<command line>")[:-2], loc)
@@ -104,6 +105,8 @@ class Preprocessor:
             if tok.kind != NEWLINE:
                 line.append(tok)
                 continue
+            if self.cancelled is not None and self.cancelled():
+                raise Cancelled
             if line and line[0].kind == DIRECTIVE:
                 self._directive(line[0], name, conds, out, depth)
             elif line and (not conds or conds[-1].active):

@@ -20,8 +20,8 @@ from PySide6.QtWidgets import (
 )
 
 from motiontool import __version__
-from motiontool.aposs.driver import CompileResult, compile_source
-from motiontool.dpl.driver import check_source, is_dpl
+from motiontool.aposs.driver import CompileResult
+from motiontool.dpl.driver import is_dpl
 from motiontool.resources import resources_path
 from motiontool.ui.bridge import LinkBridge
 from motiontool.ui.development import Development
@@ -101,6 +101,9 @@ class MainWindow(QMainWindow):
         self._live.setSingleShot(True)
         self._live.setInterval(LIVE_CHECK_MS)
         self._live.timeout.connect(self.live_check)
+        from motiontool.ui.live_check import LiveCheck
+
+        self.checker = LiveCheck(self, self.show_diagnostics)
         self.autosaver = Autosave(self, self.recovery)  # a moment after typing stops (decisions R8)
         self.messages.ide(f"motiontool {__version__} — APOSS programming for the MCO 305")
         self.restoreGeometry(self.settings.value("window/geometry", b""))
@@ -299,14 +302,13 @@ class MainWindow(QMainWindow):
 
     # --- live diagnostics, outline ---------------------------------------------------------------------------
     def live_check(self) -> None:
-        """Compile the current program in the background of typing and show the diagnostics (debounced)."""
+        """Check the current program in the background of typing (debounced): the outline at once, the
+        diagnostics from a worker thread, an older check cancelled (ui/live_check.py)."""
         editor = self.current_editor()
         if editor is None:
             return
-        check = check_source if editor.language == "dpl" else compile_source
-        result = check(editor.toPlainText(), self.program_label(editor))
-        self.show_diagnostics(editor, result)
         self._fill_outline(editor)
+        self.checker.request(editor, self.program_label(editor))
 
     def program_label(self, editor: CodeEditor) -> str:
         """The name the compiler gives the program: its path, else the sample's name, else Untitled.m."""
