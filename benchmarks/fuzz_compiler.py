@@ -1018,7 +1018,7 @@ def semantic_soup(r) -> str:
 # --- generator 5: deep and long constructs -------------------------------------------------------------------------
 def deep_nesting(r) -> str:
     n = r.choice([2, 10, 50, 100, 200, 400, 800, 1500, 3000])
-    k = r.randint(0, 21)
+    k = r.randint(0, 25)
     if k in (8, 11):  # these cost O(n^2) or 10 n lines: keep them quick
         n = min(n, 400)
     if k == 7:
@@ -1041,10 +1041,10 @@ def deep_nesting(r) -> str:
         return "#define F(x) (x)\na = " + "F(" * n + "1" + ")" * n
     if k == 8:
         return "#define M0 1\n" + "".join(f"#define M{i} (M{i - 1}+1)\n" for i in range(1, n)) + f"a = M{n - 1}"
-    if k == 9:
-        m = min(n, 14)
+    if k == 9:  # doubling macros: stopped by the expansion limits (decisions L22), whatever the depth
+        m = min(n, 64)
         return "#define M0 b\n" + "".join(f"#define M{i} M{i - 1}+M{i - 1}\n" for i in range(1, m)) + \
-            f"b = 1\na = M{m - 1}"
+            f"b = 1\na = M{m - 1}" + f"\nc = M{min(m, 12) - 1}" * r.randint(0, 60)
     if k == 10:
         return "#if 1\n" * n + "a = 1\n" + "#endif\n" * n
     if k == 11:
@@ -1067,6 +1067,14 @@ def deep_nesting(r) -> str:
         return "SWITCH 1\nCASE 1:\n" * n + "a = 1\n" + "ENDSWITCH\n" * n
     if k == 20:
         return "a = 1 " + "/* c */ " * n + "\n" + "// c\n" * n + "/*\n" * 1 + "\n" * n + "*/"
+    if k == 21:  # function-like doubling nested in its own arguments
+        return "#define D(x) x x\na = " + "D(" * min(n, 40) + "1" + ")" * min(n, 40)
+    if k == 22:
+        return "#if " + "(" * n + "1" + ")" * n + "\na = 1\n#endif"
+    if k == 23:
+        return r.choice(["#if " + "9" * (n * 3), "a = " + "9" * (n * 3), '#include "' + "n" * n + '.m"'])
+    if k == 24:  # a chain of macros each using the next
+        return "".join(f"#define C{i} C{i + 1}\n" for i in range(n)) + f"#define C{n} 1\na = C0"
     return "a = " + "abs(" * n + "-1" + ")" * n
 
 

@@ -89,3 +89,13 @@ def test_digits_of_other_scripts_are_not_apos_numbers(tmp_path, capsys):
     """Python's \\d matched '٥' (ARABIC-INDIC DIGIT FIVE), so `a = ٥` compiled as 5."""
     code, out, _ = check(tmp_path, capsys, "a = \u0665\n")
     assert (code, out) == (1, "p.m:1:5: error: unexpected character '\u0665'\n")
+
+
+def test_variable_arrays_must_fit_the_controller(tmp_path, capsys):
+    """`long a[2000000000]` compiled and then allocated gigabytes at the start (decisions L23)."""
+    code, out, _ = check(tmp_path, capsys, "long a[600000], b[600000]\n")
+    assert (code, out) == (1, "p.m:1:17: error: array 'b' makes the variable arrays 1200000 elements; the "
+                              "controller holds at most 1000000 (DIM arrays are separate)\n")
+    (tmp_path / "f.m").write_text("long f()\n{\nlong big[2000000000]\nreturn(1)\n}\nPRINT f()\n", encoding="utf-8")
+    assert cli.main(["run", str(tmp_path / "f.m"), "--seconds", "1"]) == 2
+    assert capsys.readouterr().err == "error 193: Stack overflow (line 6)\n"  # before anything is allocated

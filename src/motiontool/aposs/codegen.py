@@ -6,6 +6,7 @@ arrays, and LONG variables created by their first assignment unless #pragma NOIM
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from motiontool.aposs import ast, image, semantics
@@ -14,6 +15,7 @@ from motiontool.aposs.codegen_expr import ExpressionCode
 from motiontool.aposs.constexpr import fold_int
 from motiontool.aposs.diagnostics import Cancelled, CompileError, DiagnosticSink, Location
 from motiontool.aposs.image import BINOP_OF, PSEUDO_ARRAYS, SELECTOR_CODES, Op
+from motiontool.aposs.verify import MAX_VARIABLE_ELEMENTS
 
 
 @dataclass
@@ -199,6 +201,10 @@ class CodeGen(ExpressionCode):
             scope[decl.name] = Symbol(kind_, len(func.locals), type_, decl.dims, decl.loc)
             func.locals.append(image.Variable(decl.text, type_, list(decl.dims)))
         elif decl.dims:
+            total = sum(math.prod(a.dims) for a in self.img.arrays) + math.prod(decl.dims)
+            if total > MAX_VARIABLE_ELEMENTS:  # the controller must be able to hold them (decisions L23)
+                raise CompileError(f"array '{decl.text}' makes the variable arrays {total} elements; the controller "
+                                   f"holds at most {MAX_VARIABLE_ELEMENTS} (DIM arrays are separate)", decl.loc)
             scope[decl.name] = Symbol("array", len(self.img.arrays), type_, decl.dims, decl.loc)
             self.img.arrays.append(image.Variable(decl.text, type_, list(decl.dims)))
         else:

@@ -7,8 +7,9 @@ The image is versioned and serialised as ``MTIMG`` + version byte + zlib-compres
 from __future__ import annotations
 
 import json
+import re
 import zlib
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, fields
 from enum import IntEnum
 
 MAGIC = b"MTIMG"
@@ -105,7 +106,18 @@ PSEUDO_ARRAYS = ["SYSVAR", "PCD", "PDO"]
 
 
 class ImageError(ValueError):
-    """A program image that cannot be read; the message names the byte offset or the field."""
+    """A program image that cannot be read or run; the message names the byte offset, the field or the instruction.
+
+    ``field`` (a path such as ``functions[2].entry``) or ``code_index`` (an entry of ``code``) say where, so that
+    ProgramImage.from_bytes can add the byte offset in the inflated body."""
+
+    def __init__(self, message: str, field: str | None = None, code_index: int | None = None):
+        super().__init__(message)
+        self.field = field if field is not None else (f"code[{code_index}]" if code_index is not None else None)
+
+
+MAX_IMAGE_BYTES = 64 << 20   # a compressed image (decisions R4)
+MAX_BODY_BYTES = 256 << 20   # its inflated JSON: refuses a decompression bomb
 
 
 @dataclass
@@ -197,6 +209,7 @@ class ProgramImage:
 
     @classmethod
     def from_bytes(cls, data: bytes) -> ProgramImage:
+        """Read and completely validate an image (aposs/verify.py); ImageError names the byte offset."""
         if data[:5] != MAGIC:
             raise ImageError("not a motiontool program image: bytes 0-4 are not 'MTIMG'")
         if len(data) < 6:
@@ -204,43 +217,205 @@ class ProgramImage:
         if data[5] != FORMAT_VERSION:
             raise ImageError(f"program image version {data[5]} (byte 5) is not supported; "
                              f"this motiontool reads version {FORMAT_VERSION}")
+        if len(data) > MAX_IMAGE_BYTES:
+            raise ImageError(f"program image of {len(data)} bytes: more than {MAX_IMAGE_BYTES}")
+        inflate = zlib.decompressobj()
         try:
-            raw = json.loads(zlib.decompress(data[6:]).decode("utf-8"))
-        except (zlib.error, UnicodeDecodeError, json.JSONDecodeError) as exc:
+            body = inflate.decompress(data[6:], MAX_BODY_BYTES)
+            if inflate.unconsumed_tail:
+                raise ImageError(f"the body after byte 6 inflates to more than {MAX_BODY_BYTES} bytes")
+            if not inflate.eof:
+                raise ImageError(f"truncated program image: the compressed body after byte 6 ends at byte {len(data)}")
+            if inflate.unused_data:
+                raise ImageError(f"{len(inflate.unused_data)} bytes after the compressed body "
+                                 f"(from byte {len(data) - len(inflate.unused_data)})")
+            text = body.decode("utf-8")
+            raw = json.loads(text, parse_constant=_no_constant)
+        except zlib.error as exc:
             raise ImageError(f"corrupt program image body after byte 6: {exc}") from None
+        except UnicodeDecodeError as exc:
+            raise ImageError(f"program image body: not UTF-8 at byte {exc.start} of the inflated body") from None
+        except json.JSONDecodeError as exc:
+            raise ImageError(f"program image body: {exc.msg} at byte {exc.pos} of the inflated body") from None
+        except RecursionError:
+            raise ImageError("program image body nested too deeply") from None
         try:
-            image = cls(
-                name=raw["name"], debug=bool(raw["debug"]), code=list(raw["code"]),
-                doubles=[float(x) for x in raw["doubles"]], strings=list(raw["strings"]),
-                globals=[Variable(**v) for v in raw["globals"]], arrays=[Variable(**v) for v in raw["arrays"]],
-                dims=[Variable(**v) for v in raw["dims"]],
-                functions=[Function(f["name"], f["type"], f["entry"], [Variable(**p) for p in f["params"]],
-                                    [Variable(**v) for v in f["locals"]]) for f in raw["functions"]],
-                subprograms=[Subprogram(**s) for s in raw["subprograms"]],
-                calls=[CommandCall(**c) for c in raw["calls"]],
-                interrupts=[Interrupt(**i) for i in raw["interrupts"]],
-                loops=[list(x) for x in raw["loops"]], files=list(raw["files"]),
-                lines=[LineEntry(**e) for e in raw["lines"]], version=raw["version"])
-        except (KeyError, TypeError, ValueError) as exc:
-            raise ImageError(f"program image field missing or malformed: {exc}") from None
-        image.validate()
+            image = _decode(raw)
+            image.validate()
+        except ImageError as exc:
+            where = _offset(text, exc.field) if exc.field else None
+            suffix = f" (byte {where} of the inflated body)" if where is not None else ""
+            raise ImageError(f"{exc}{suffix}", exc.field) from None
         return image
 
     def validate(self) -> None:
-        """Refuse an image whose instructions point outside its tables."""
-        if len(self.code) % 2:
-            raise ImageError("code has an odd number of entries")
-        limits = {Op.PUSHD: len(self.doubles), Op.PUSHS: len(self.strings), Op.PRINTS: len(self.strings),
-                  Op.LOADG: len(self.globals), Op.STOREG: len(self.globals), Op.REFG: len(self.globals),
-                  Op.ARRDIM: len(self.dims), Op.ARRG: len(self.arrays), Op.CALL: len(self.functions),
-                  Op.GOSUB: len(self.subprograms), Op.CMD: len(self.calls), Op.INTR: len(self.interrupts),
-                  Op.LOOP: len(self.loops), Op.JMP: len(self), Op.JZ: len(self), Op.JNZ: len(self)}
-        for pc in range(len(self)):
-            op, arg = self.code[2 * pc], self.code[2 * pc + 1]
-            try:
-                op = Op(op)
-            except ValueError:
-                raise ImageError(f"unknown instruction {op} at pc {pc}") from None
-            limit = limits.get(op)
-            if limit is not None and not 0 <= arg < limit:
-                raise ImageError(f"instruction {op.name} at pc {pc} refers to entry {arg} of {limit}")
+        """Refuse an image a controller cannot run safely (aposs/verify.py: tables, stack effects, operand types,
+        jump targets)."""
+        from motiontool.aposs.verify import verify
+
+        verify(self)
+
+
+# --- reading: every field with its type, nothing else --------------------------------------------------------------
+def _no_constant(name: str):
+    raise ImageError(f"program image body: {name} is not a number")
+
+
+def _need(ok: bool, path: str, what: str) -> None:
+    if not ok:
+        raise ImageError(f"{path}: expected {what}", path)
+
+
+def _int(value, path: str) -> int:
+    _need(type(value) is int, path, "an integer")
+    return value
+
+
+def _str(value, path: str) -> str:
+    _need(type(value) is str, path, "a text")
+    return value
+
+
+def _bool(value, path: str) -> bool:
+    _need(type(value) is bool, path, "true or false")
+    return value
+
+
+def _list(value, path: str) -> list:
+    _need(type(value) is list, path, "a list")
+    return value
+
+
+def _obj(value, path: str, keys: tuple[str, ...]) -> dict:
+    _need(type(value) is dict, path, "an object")
+    _need(set(value) == set(keys), path, "the keys " + ", ".join(keys))
+    return value
+
+
+def _variable(value, path: str) -> Variable:
+    v = _obj(value, path, ("name", "type", "dims"))
+    return Variable(_str(v["name"], path + ".name"), _str(v["type"], path + ".type"),
+                    [_int(d, f"{path}.dims[{k}]") for k, d in enumerate(_list(v["dims"], path + ".dims"))])
+
+
+def _items(raw: dict, key: str, decode) -> list:
+    return [decode(item, f"{key}[{k}]") for k, item in enumerate(_list(raw[key], key))]
+
+
+def _decode(raw) -> ProgramImage:
+    raw = _obj(raw, "body", tuple(f.name for f in fields(ProgramImage)))
+    _need(raw["version"] == FORMAT_VERSION and type(raw["version"]) is int, "version", f"{FORMAT_VERSION}")
+
+    def function(value, path):
+        f = _obj(value, path, ("name", "type", "entry", "params", "locals"))
+        return Function(_str(f["name"], path + ".name"), _str(f["type"], path + ".type"),
+                        _int(f["entry"], path + ".entry"),
+                        _items(f, "params", lambda v, p: _variable(v, path + "." + p)),
+                        _items(f, "locals", lambda v, p: _variable(v, path + "." + p)))
+
+    def subprogram(value, path):
+        s = _obj(value, path, ("name", "entry"))
+        return Subprogram(_str(s["name"], path + ".name"), _int(s["entry"], path + ".entry"))
+
+    def call(value, path):
+        c = _obj(value, path, ("command", "argc", "axis", "returns"))
+        return CommandCall(_str(c["command"], path + ".command"), _int(c["argc"], path + ".argc"),
+                           _bool(c["axis"], path + ".axis"), _str(c["returns"], path + ".returns"))
+
+    def interrupt(value, path):
+        i = _obj(value, path, ("kind", "sign", "subprogram", "has_value", "setout", "toin", "delete"))
+        return Interrupt(_str(i["kind"], path + ".kind"), _int(i["sign"], path + ".sign"),
+                         _int(i["subprogram"], path + ".subprogram"), *(_bool(i[k], f"{path}.{k}") for k in (
+                             "has_value", "setout", "toin", "delete")))
+
+    def loop(value, path):
+        pair = _list(value, path)
+        _need(len(pair) == 2, path, "[counter slot, target pc]")
+        return [_int(pair[0], path + "[0]"), _int(pair[1], path + "[1]")]
+
+    def line(value, path):
+        e = _obj(value, path, ("pc", "file", "line", "col"))
+        return LineEntry(*(_int(e[k], f"{path}.{k}") for k in ("pc", "file", "line", "col")))
+
+    def double(value, path):
+        _need(type(value) in (int, float), path, "a number")
+        return float(value)
+
+    return ProgramImage(
+        name=_str(raw["name"], "name"), debug=_bool(raw["debug"], "debug"), code=_items(raw, "code", _int),
+        doubles=_items(raw, "doubles", double), strings=_items(raw, "strings", _str),
+        globals=_items(raw, "globals", _variable), arrays=_items(raw, "arrays", _variable),
+        dims=_items(raw, "dims", _variable), functions=_items(raw, "functions", function),
+        subprograms=_items(raw, "subprograms", subprogram), calls=_items(raw, "calls", call),
+        interrupts=_items(raw, "interrupts", interrupt), loops=_items(raw, "loops", loop),
+        files=_items(raw, "files", _str), lines=_items(raw, "lines", line), version=raw["version"])
+
+
+def _offset(text: str, field: str) -> int | None:
+    """The byte offset in the inflated body where the value at ``field`` (``functions[2].entry``) starts."""
+    if field == "body":
+        return 0
+    path = re.findall(r"\.?([A-Za-z_]+)|\[(\d+)\]", field)
+    try:
+        pos = _JsonCursor(text).find([name if name else int(number) for name, number in path])
+    except (ValueError, IndexError, RecursionError):
+        return None
+    return len(text[:pos].encode("utf-8")) if pos is not None else None
+
+
+class _JsonCursor:
+    """Finds where a value sits in JSON text without building it (only on the error path)."""
+
+    _SCALAR = re.compile(r'"(?:[^"\\]|\\.)*"|[^,\]\}\s]+')
+
+    def __init__(self, text: str):
+        self.text = text
+
+    def _ws(self, i: int) -> int:
+        while i < len(self.text) and self.text[i] in " \t\r\n":
+            i += 1
+        return i
+
+    def _skip(self, i: int) -> int:
+        """The position after the value starting at i."""
+        i = self._ws(i)
+        c = self.text[i]
+        if c in "[{":
+            close = "]" if c == "[" else "}"
+            i = self._ws(i + 1)
+            while self.text[i] != close:
+                if c == "{":
+                    i = self._ws(self._skip(i))  # the key
+                    i = self._ws(i + 1)           # the ':'
+                i = self._ws(self._skip(i))
+                if self.text[i] == ",":
+                    i = self._ws(i + 1)
+            return i + 1
+        m = self._SCALAR.match(self.text, i)
+        return m.end()
+
+    def find(self, path: list, i: int = 0) -> int | None:
+        i = self._ws(i)
+        for step in path:
+            c = self.text[i]
+            if isinstance(step, int) and c == "[":
+                i = self._ws(i + 1)
+                for _ in range(step):
+                    i = self._ws(self._skip(i))
+                    i = self._ws(i + 1)  # the ','
+            elif isinstance(step, str) and c == "{":
+                i = self._ws(i + 1)
+                while self.text[i] != "}":
+                    key_end = self._skip(i)
+                    key = self.text[i + 1:key_end - 1]
+                    i = self._ws(self._ws(key_end) + 1)
+                    if key == step:
+                        break
+                    i = self._ws(self._skip(i))
+                    if self.text[i] == ",":
+                        i = self._ws(i + 1)
+                else:
+                    return None
+            else:
+                return None
+        return i

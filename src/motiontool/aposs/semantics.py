@@ -46,6 +46,14 @@ def rnd(a: int, b: int) -> int:
     return wrap(q if (a >= 0) == (b >= 0) else -q)
 
 
+def finite(result: float, a: float, op: str, b: float) -> float:
+    """A DOUBLE result beyond the DOUBLE range is error 156, at run time and in a constant (decisions K80): the
+    controller has no infinity to go on with, and a saturated LONG made of one would drive the axis to the end."""
+    if not math.isfinite(result):
+        raise OperatorError(f"{a!r} {op} {b!r} overflows the DOUBLE range")
+    return result
+
+
 def ddiv(a: float, b: float) -> float:
     """``%`` on DOUBLE values (DG 6575: -100.00 % 15.0 = -6.666…)."""
     if b == 0:
@@ -114,9 +122,12 @@ def _checked(name: str, fn, lo: float = -math.inf, hi: float = math.inf):
         if not lo <= x <= hi:
             raise OperatorError(f"{name}({x}) is not defined (error 156)")
         try:
-            return fn(x)
+            result = fn(x)
         except (ValueError, OverflowError):  # e.g. sin(inf)
             raise OperatorError(f"{name}({x}) is not defined (error 156)") from None
+        if not math.isfinite(result):  # grad(1e308)
+            raise OperatorError(f"{name}({x}) overflows the DOUBLE range (error 156)")
+        return result
     return call
 
 
@@ -176,13 +187,13 @@ def long_binary(op: str, a: int, b: int) -> int:
 def double_binary(op: str, a: float, b: float) -> float | int:
     """Binary operator where at least one side is DOUBLE (both already converted)."""
     if op == "+":
-        return a + b
+        return finite(a + b, a, "+", b)
     if op == "-":
-        return a - b
+        return finite(a - b, a, "-", b)
     if op == "*":
-        return a * b
+        return finite(a * b, a, "*", b)
     if op == "%":
-        return ddiv(a, b)
+        return finite(ddiv(a, b), a, "%", b)
     if op == "EXP":
         return power(a, b)
     if op == "AND":

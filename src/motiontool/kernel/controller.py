@@ -229,6 +229,9 @@ class Controller:
             if self.program_state == "running":
                 self._end_program("error")
             return
+        except Exception as exc:  # noqa: BLE001 - a fault of the simulator itself (decisions K81)
+            self.internal_fault(exc)
+            return
         self._emit(Event("program", self.time_ms, f"program {self.image.name} started"))
 
     def break_program(self) -> None:
@@ -329,12 +332,15 @@ class Controller:
         self.can.tick(time_ms)
         if self.program_state == "running":  # a slice of the program (inline: every tick)
             vm = self.vm
-            if self.interrupts.sources or self.error:
-                self._serve_interrupts(vm)
             try:
+                if self.interrupts.sources or self.error:
+                    self._serve_interrupts(vm)
                 vm.run(INSTRUCTIONS_PER_TICK)
             except ControllerError as exc:
                 self.raise_error(exc)
+                return
+            except Exception as exc:  # noqa: BLE001 - a fault of the simulator itself (decisions K81)
+                self.internal_fault(exc)
                 return
             if vm.ended and self.program_state == "running":
                 self._end_program("ended")
@@ -479,6 +485,14 @@ class Controller:
             self._error_reaction(number)
         if self.program_state == "running" and self.interrupts.error_sub is None:
             self._fail(exc, already_reported=True)
+
+    def internal_fault(self, exc: Exception) -> None:
+        """A fault of the simulator while a program runs (never of the program): error 199 Internal MCO fault
+        (DG 11403); the program ends whatever ON ERROR says, since its state can no longer be trusted, and the axis
+        reacts per ERRCOND. It never stays "running"."""
+        self.raise_error(ControllerError(199, f"{type(exc).__name__}: {exc}"))
+        if self.program_state == "running":
+            self._end_program("error")
 
     def _fail(self, exc: ControllerError, already_reported: bool = False) -> None:
         if not already_reported:

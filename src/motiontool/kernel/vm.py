@@ -396,17 +396,15 @@ class VM:
             raise ControllerError(193, f"calling {func.name}")
         args = self.stack[len(self.stack) - n:] if n else []
         del self.stack[len(self.stack) - n:]
+        size = len(func.locals) + sum(_size(v.dims) for v in func.locals[n:] if v.dims)
+        if self.stack_used + size > self.stack_size:  # before anything is allocated: long a[2000000000]
+            raise ControllerError(193, f"calling {func.name}")
         local_values = list(args)
-        size = len(func.locals)
         for v in func.locals[n:]:
             if v.dims:
-                array = ArrayRef(v.name, _size(v.dims), v.dims, v.type)
-                size += len(array)
-                local_values.append(array)
+                local_values.append(ArrayRef(v.name, _size(v.dims), v.dims, v.type))
             else:
                 local_values.append(0.0 if v.type == "double" else 0)
-        if self.stack_used + size > self.stack_size:
-            raise ControllerError(193, f"calling {func.name}")
         self.stack_used += size
         self.frames.append(Frame(local_values, self.pc, size))
         self.pc = func.entry
