@@ -15,7 +15,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from PySide6.QtCore import Qt, QTimer
-from PySide6.QtWidgets import QApplication, QFileDialog, QMessageBox
+from PySide6.QtWidgets import QApplication, QFileDialog, QLineEdit, QMessageBox
 
 
 @dataclass
@@ -37,6 +37,7 @@ class Answers:
         self.qtbot = qtbot
         self.answers = list(answers)
         self.seen: list[Seen] = []
+        self.unexpected: list[str] = []
         self._handled: set[int] = set()
         self._timer = QTimer()
         self._timer.setInterval(20)
@@ -49,6 +50,7 @@ class Answers:
     def __exit__(self, *exc) -> None:
         self._timer.stop()
         if exc[0] is None:
+            assert not self.unexpected, f"unexpected dialogs (closed): {self.unexpected}; seen: {self.seen}"
             assert not self.answers, f"dialogs that never came: {self.answers}; seen: {self.seen}"
 
     def _poll(self) -> None:
@@ -56,17 +58,26 @@ class Answers:
         if dialog is None or id(dialog) in self._handled or not dialog.isVisible():
             return
         self._handled.add(id(dialog))
-        if not self.answers:
-            raise AssertionError(f"an unexpected dialog: {dialog.windowTitle()!r}")
+        text = dialog.text() if isinstance(dialog, QMessageBox) else ""
+        if not self.answers or (isinstance(dialog, QMessageBox) != (not isinstance(self.answers[0], ChooseFile))) \
+                or (isinstance(dialog, QMessageBox) and dialog.button(self.answers[0]) is None):
+            self.unexpected.append(f"{type(dialog).__name__} {dialog.windowTitle()!r} {text!r}")
+            dialog.reject()  # never leave a test hanging in a modal loop
+            return
         answer = self.answers.pop(0)
         if isinstance(dialog, QMessageBox):
-            self.seen.append(Seen("message", dialog.windowTitle(), dialog.text(), dialog.informativeText()))
+            self.seen.append(Seen("message", dialog.windowTitle(), text, dialog.informativeText()))
             self.qtbot.mouseClick(dialog.button(answer), Qt.MouseButton.LeftButton)
         elif isinstance(dialog, QFileDialog):
             self.seen.append(Seen("file", dialog.windowTitle(), answer.path))
-            dialog.selectFile(answer.path)
+            name = dialog.findChild(QLineEdit, "fileNameEdit")  # typed, as a user does (selectFile may keep the
+            if name is not None:                                # dialog's default name while its model loads)
+                name.setText(answer.path)
+            else:
+                dialog.selectFile(answer.path)
             dialog.accept()
             if answer.then is not None:
                 answer.then()
         else:
-            raise AssertionError(f"no way to answer {type(dialog).__name__} {dialog.windowTitle()!r}")
+            self.unexpected.append(f"{type(dialog).__name__} {dialog.windowTitle()!r}")
+            dialog.reject()

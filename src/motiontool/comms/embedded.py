@@ -24,6 +24,11 @@ from motiontool.kernel.controller import Controller
 from motiontool.kernel.master import MasterConfig
 from motiontool.kernel.plant import PlantConfig
 
+# The threaded link (the IDE's) takes the controller's PRINT output as a serial link would, about one line per ms
+# (115 200 baud): a PRINT flood then makes the program wait for its output buffer instead of stalling real time,
+# Break and the IDE (decisions K82). The synchronous link (the command line) takes all of it every ms.
+PRINT_LINES_PER_MS = 1
+
 
 class EmbeddedLink(Link):
     kind = "embedded"
@@ -76,6 +81,7 @@ class EmbeddedLink(Link):
     def _run(self) -> None:
         start = time.monotonic()
         ticks = 0
+        self.service.controller.output_per_tick = PRINT_LINES_PER_MS
         while not self._stop.is_set():
             while True:
                 try:

@@ -7,6 +7,7 @@ so the same program and inputs always give the same trace.
 
 from __future__ import annotations
 
+from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -30,6 +31,8 @@ from motiontool.kernel.vm import VM, ArrayRef
 
 INSTRUCTIONS_PER_TICK = 500  # program speed: machine instructions per ms (docs/decisions.md)
 ERROR_HISTORY = 50           # DG 11350
+PRINT_BUFFER_LINES = 100     # the PRINT output buffer: a full one makes PRINT wait (decisions K82)
+RECENT_EVENTS = 10_000       # events kept in Controller.events (an hour of PRINTs would be gigabytes)
 
 
 @dataclass
@@ -92,7 +95,9 @@ class Controller:
         self.recorder = Recorder()
         self.vm: VM | None = None
         self.program_state = "idle"    # idle | running | break | ended | error
-        self.events: list[Event] = []
+        self.events: deque[Event] = deque(maxlen=RECENT_EVENTS)
+        self.output: deque[tuple[int, str]] = deque()  # PRINT lines the link has not taken yet (time, text)
+        self.output_per_tick: int | None = None  # lines the link takes each ms; None: all (an in-process link)
         self.listeners: list[Callable[[Event], None]] = []
         self.error: int = 0            # the pending error (ERRNO)
         self.error_history: list[ErrorRecord] = []
@@ -307,7 +312,12 @@ class Controller:
 
     # --- time ------------------------------------------------------------------------------------------
     def tick(self) -> None:
-        """Advance one millisecond."""
+        """Advance one millisecond; then the link takes PRINT output (all, or output_per_tick lines)."""
+        self._tick()
+        if self.output:
+            self.send_output(self.output_per_tick)
+
+    def _tick(self) -> None:
         self.time_ms = time_ms = self.time_ms + 1
         if self.io.events:
             self.io.apply_events(time_ms)
@@ -542,7 +552,18 @@ class Controller:
     def print_text(self, text: str) -> None:
         if self.program_data.print_device == -1:  # CR 3535-3550: PRINTDEV -1 = "no output after that line"
             return
-        self._emit(Event("print", self.time_ms, text))
+        self.output.append((self.time_ms, text))
+
+    def print_room(self) -> bool:
+        """Room in the PRINT output buffer; the VM's PRINT waits while it is full (decisions K82)."""
+        return len(self.output) < PRINT_BUFFER_LINES
+
+    def send_output(self, limit: int | None = None) -> None:
+        """Hand up to ``limit`` buffered PRINT lines (all with None) to the listeners, oldest first."""
+        output = self.output
+        for _ in range(len(output) if limit is None else min(limit, len(output))):
+            time_ms, text = output.popleft()
+            self._deliver(Event("print", time_ms, text))
 
     def define_interrupt(self, vm: VM, index: int, operands: list[int]) -> None:
         info = vm.image.interrupts[index]
@@ -586,6 +607,11 @@ class Controller:
         self._emit(Event("message", self.time_ms, text, line=line))
 
     def _emit(self, event: Event) -> None:
+        if self.output:  # what the program printed before comes first
+            self.send_output()
+        self._deliver(event)
+
+    def _deliver(self, event: Event) -> None:
         self.events.append(event)
         for listener in self.listeners:
             listener(event)

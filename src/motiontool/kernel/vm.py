@@ -68,10 +68,21 @@ class Host(Protocol):
     def command(self, vm: VM, call: CommandCall, args: list) -> Any: ...
     def dim_array(self, index: int, name: str, dims: list[int]) -> ArrayRef: ...
     def print_text(self, text: str) -> None: ...
+    def print_room(self) -> bool: ...
     def define_interrupt(self, vm: VM, index: int, operands: list[int]) -> None: ...
     def read_pseudo(self, which: int, index: int) -> int: ...
     def statement_stop(self, vm: VM, line_index: int) -> bool: ...
     def write_pseudo(self, which: int, index: int, value: int) -> None: ...
+
+
+class _OutputRoom(Wait):
+    """PRINT waits while the controller's output buffer is full (the link has not taken the lines yet)."""
+
+    def __init__(self, host) -> None:
+        self.host = host
+
+    def done(self) -> bool:
+        return self.host.print_room()
 
 
 @dataclass
@@ -349,6 +360,10 @@ class VM:
         elif op == Op.PRINTC:
             self.print_items.append(_Char(chr(stack.pop() & 0xFF)))
         elif op == Op.PRINTNL:
+            if arg and not self.host.print_room():  # the output buffer is full: wait, then print (decisions K82)
+                self.pc -= 1
+                self.wait = _OutputRoom(self.host)
+                return
             self.print_line += join_print_items(self.print_items)
             self.print_items.clear()
             if arg:

@@ -4,6 +4,9 @@ bar on a worker thread (ui/status_worker.py), so the window never waits for a sl
 
 from __future__ import annotations
 
+import threading
+from collections import deque
+
 from PySide6.QtCore import QObject, Signal
 
 from motiontool.comms.link import Link
@@ -13,6 +16,7 @@ from motiontool.ui.status_worker import StatusWorker
 
 class LinkBridge(QObject):
     printed = Signal(int, str, int)         # time_ms, text, controller ID
+    printed_lines = Signal(int, object)     # controller ID, [text, ...]: consecutive PRINT lines in one go
     controller_error = Signal(int, int, str, object, int)  # time_ms, number, text, line, controller ID
     program_event = Signal(int, str, int)   # time_ms, text, controller ID
     samples = Signal(object)                # {"signals", "time_ms", "values"}
@@ -26,6 +30,11 @@ class LinkBridge(QObject):
         self.description = ""
         self.controller_id = 1
         self._callback = None
+        # Events of the kernel thread wait here; one queued signal wakes the GUI thread for all that came meanwhile,
+        # so a burst of PRINT lines costs one wake-up and one append, not one each (decisions K82).
+        self._pending: deque = deque()
+        self._lock = threading.Lock()
+        self._woken = False
         self._event.connect(self._dispatch)  # emitted from the kernel thread → queued into the GUI thread
         self._poll_ms = poll_ms
         self.status_worker = StatusWorker(self)
@@ -44,7 +53,7 @@ class LinkBridge(QObject):
         self.controller_id = controller_id
         self.last_status = None                 # the new controller's first answer is news
         # Events are tagged with the controller they came from: after a switch, queued ones keep their ID.
-        self._callback = lambda event, *, cid=controller_id: self._event.emit((cid, event))
+        self._callback = lambda event, *, cid=controller_id: self._queue(cid, event)
         link.subscribe(self._callback)
         self.connection_changed.emit("connected")
         # at once, then periodically; a slow line (FC at 9600 baud) less often than the simulator
@@ -77,11 +86,39 @@ class LinkBridge(QObject):
         self.link = None  # the next command that needs the controller reconnects (DG 2064-2066)
         self.connection_changed.emit("lost")
 
-    def _dispatch(self, tagged: tuple[int, LinkEvent]) -> None:
-        cid, event = tagged
-        if event.kind == "print":
-            self.printed.emit(event.time_ms, event.text, cid)
-        elif event.kind == "error":
+    def _queue(self, cid: int, event: LinkEvent) -> None:
+        with self._lock:
+            self._pending.append((cid, event))
+            if self._woken:
+                return
+            self._woken = True
+        self._event.emit(None)
+
+    def _dispatch(self, _wake) -> None:
+        with self._lock:
+            batch = list(self._pending)
+            self._pending.clear()
+            self._woken = False
+        lines: list[str] = []
+        lines_of = None
+        for cid, event in batch:
+            if event.kind == "print":
+                if lines and cid != lines_of:
+                    self.printed_lines.emit(lines_of, lines)
+                    lines = []
+                lines_of = cid
+                lines.append(event.text)
+                self.printed.emit(event.time_ms, event.text, cid)
+                continue
+            if lines:
+                self.printed_lines.emit(lines_of, lines)
+                lines = []
+            self._handle(cid, event)
+        if lines:
+            self.printed_lines.emit(lines_of, lines)
+
+    def _handle(self, cid: int, event: LinkEvent) -> None:
+        if event.kind == "error":
             self.controller_error.emit(event.time_ms, event.number, event.text, event.line, cid)
         elif event.kind == "program":
             self.program_event.emit(event.time_ms, event.text, cid)

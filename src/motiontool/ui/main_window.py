@@ -90,7 +90,7 @@ class MainWindow(QMainWindow):
         from motiontool.ui.toolbar import build_toolbar
 
         self.toolbar = build_toolbar(self)
-        self.bridge.printed.connect(lambda t, text, cid: self.messages.controller(cid, text))
+        self.bridge.printed_lines.connect(lambda cid, texts: self.messages.controller_lines(cid, texts))
         self.bridge.controller_error.connect(self._controller_error)
         self.bridge.program_event.connect(self._program_event)
         self._last_error: dict[int, tuple[int, str, int | None]] = {}  # controller ID → number, text, line

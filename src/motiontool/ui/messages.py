@@ -68,12 +68,17 @@ class MessagesPane(QPlainTextEdit):
         """A line from a controller (PRINT output, errors), prefixed with its ID."""
         self._append(f"[{controller_id:02d}] {text}")
 
+    def controller_lines(self, controller_id: int, texts: list[str]) -> None:
+        """Several lines of one controller in one append (a PRINT burst costs one layout, not one per line)."""
+        if texts:
+            self._append("\n".join(f"[{controller_id:02d}] {text}" for text in texts))
+
     def _append(self, line: str) -> None:
         self.appendPlainText(line)
         self.moveCursor(QTextCursor.MoveOperation.End)
         if self._log is not None:
             self._pending.append(line)
-            if len(self._pending) >= 100:
+            if len(self._pending) >= 100 or "\n" in line:
                 self.update_log()
 
     # --- Messages ▸ Log file / Stop logging / Update Log file --------------------------------------------
