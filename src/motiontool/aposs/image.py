@@ -237,6 +237,8 @@ class ProgramImage:
             raise ImageError(f"program image body: not UTF-8 at byte {exc.start} of the inflated body") from None
         except json.JSONDecodeError as exc:
             raise ImageError(f"program image body: {exc.msg} at byte {exc.pos} of the inflated body") from None
+        except ValueError as exc:  # an integer of thousands of digits
+            raise ImageError(f"program image body: {exc}") from None
         except RecursionError:
             raise ImageError("program image body nested too deeply") from None
         try:
@@ -298,6 +300,12 @@ def _variable(value, path: str) -> Variable:
                     [_int(d, f"{path}.dims[{k}]") for k, d in enumerate(_list(v["dims"], path + ".dims"))])
 
 
+def _code(code) -> list[int]:
+    if type(code) is list and all(type(x) is int for x in code):  # the usual case, at C speed
+        return code
+    return [_int(x, f"code[{k}]") for k, x in enumerate(_list(code, "code"))]
+
+
 def _items(raw: dict, key: str, decode) -> list:
     return [decode(item, f"{key}[{k}]") for k, item in enumerate(_list(raw[key], key))]
 
@@ -342,7 +350,7 @@ def _decode(raw) -> ProgramImage:
         return float(value)
 
     return ProgramImage(
-        name=_str(raw["name"], "name"), debug=_bool(raw["debug"], "debug"), code=_items(raw, "code", _int),
+        name=_str(raw["name"], "name"), debug=_bool(raw["debug"], "debug"), code=_code(raw["code"]),
         doubles=_items(raw, "doubles", double), strings=_items(raw, "strings", _str),
         globals=_items(raw, "globals", _variable), arrays=_items(raw, "arrays", _variable),
         dims=_items(raw, "dims", _variable), functions=_items(raw, "functions", function),

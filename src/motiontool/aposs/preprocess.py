@@ -227,8 +227,9 @@ class Preprocessor:
             raise CompileError(f"macro '{macro_name}' body cannot hold a multi-line comment", tok.loc)
         self.macros[macro_name] = Macro(macro_name, params, body, tok.loc)
 
-    def _expand(self, tokens: list[Token], file: str) -> list[Token]:
-        """Expand macros in one line; the result is rescanned (DG 6904), a macro never inside itself."""
+    def _expand(self, tokens: list[Token], file: str, nesting: int = 0) -> list[Token]:
+        """Expand macros in one line; the result is rescanned (DG 6904), a macro never inside itself. ``nesting``:
+        how deep this is inside the arguments of other macro calls (F(F(F(…))) costs the square of the depth)."""
         toks = list(tokens)
         i = 0
         while i < len(toks):
@@ -250,8 +251,11 @@ class Preprocessor:
                 if end >= len(toks) or not toks[end].is_op("("):
                     i += 1  # a function-like macro name without '(' is left alone, as in C
                     continue
+                if nesting >= MAX_MACRO_DEPTH:
+                    raise CompileError(f"macro '{macro.name}' is called inside the arguments of more than "
+                                       f"{MAX_MACRO_DEPTH} other macro calls", t.loc, t.origin[:3])
                 args, end = self._collect_args(toks, end, macro, t)
-                args = [self._expand(a, file) for a in args]
+                args = [self._expand(a, file, nesting + 1) for a in args]
             if len(t.origin) >= MAX_MACRO_DEPTH:
                 raise CompileError(f"macro '{macro.name}' is expanded inside more than {MAX_MACRO_DEPTH} other "
                                    "macros (recursive definitions?)", t.loc, t.origin[:3])

@@ -93,7 +93,13 @@ def _number(text: str, source: str, line: int, column: str) -> float:
 
 def parse_trace(text: str, source: str = "<trace>") -> TraceTable:
     """Parse the text of a --trace CSV or a scope CSV export."""
-    rows = list(csv.reader(io.StringIO(text.lstrip("\ufeff"))))
+    reader = csv.reader(io.StringIO(text.lstrip("\ufeff")))
+    rows = []
+    try:
+        for row in reader:
+            rows.append(row)
+    except csv.Error as exc:  # e.g. a lone carriage return inside a field
+        raise TraceError(f"not a CSV file: {exc}", reader.line_num, source) from None
     numbered = [(k, row) for k, row in enumerate(rows, 1) if any(cell.strip() for cell in row)]
     if not numbered:
         raise TraceError("the file is empty", 1, source)

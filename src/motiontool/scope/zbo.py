@@ -117,6 +117,8 @@ def loads(text: str, name: str = "<zbo>") -> Scope:
         doc = json.loads(text)
     except json.JSONDecodeError as exc:
         raise ZboError(f"{name}:{exc.lineno}:{exc.colno}: not JSON: {exc.msg}") from None
+    except ValueError as exc:  # an integer of thousands of digits
+        raise ZboError(f"{name}: not a valid oscilloscope file: {exc}") from None
     except RecursionError:
         raise ZboError(f"{name}: nested too deeply") from None
     r = _Reader(name)

@@ -1,0 +1,36 @@
+"""Fuzzing the file readers a user's file reaches (.zbc, .dat, .zba, .zbo, Testrun .txt, trace CSV): a mutated file
+is read or refused with the reader's own error, never a crash (issue 18, items 5 and 8). The mutations are those of
+benchmarks/fuzz_files.py (other scripts' digits, 5 000-digit numbers, NaN, invalid UTF-8, truncation, repeated
+lines, ...), driven by hypothesis-drawn bytes so that a failure shrinks.
+
+MOTIONTOOL_FUZZ_FILES sets the number of cases per format (default 100)."""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, given, note, settings
+from hypothesis import strategies as st
+
+from tests.aposs.test_fuzz import ByteRandom
+from tests.aposs.test_image_fuzz import fuzz_files
+
+CASES = int(os.environ.get("MOTIONTOOL_FUZZ_FILES", "100"))
+FILE_FORMATS = ["zbc", "dat", "zba", "zbo", "testrun", "trace"]
+
+
+@pytest.mark.parametrize("fmt", FILE_FORMATS)
+def test_mutated_files_are_read_or_refused_with_the_readers_error(fmt):
+    @settings(max_examples=CASES, deadline=None, derandomize=True, database=None,
+              suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+    @given(st.binary(min_size=4, max_size=48).map(ByteRandom))
+    def case(r):
+        data = fuzz_files.mutate_file(r, r.choice(fuzz_files.SEEDS[fmt]))
+        note(f"{fmt}: {data!r}")
+        with tempfile.TemporaryDirectory() as folder:
+            fuzz_files.check_file(fmt, data, Path(folder))
+
+    case()
