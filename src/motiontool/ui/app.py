@@ -67,12 +67,12 @@ def run_gui(open_file: Path | None = None, screenshot: Path | None = None) -> in
             return 1
     elif window.open_last_file() is None:
         window.new_file()
-    if screenshot is None:  # only autosaves of IDEs that are gone (decisions R8)
+    window.development.connect_default()  # the IDE starts on the embedded simulated controller
+    window.show()
+    if screenshot is None:  # only autosaves of IDEs that are gone (decisions R8), asked over the open window
         from motiontool.ui.recovery import offer_recovery
 
         offer_recovery(window)
-    window.development.connect_default()  # the IDE starts on the embedded simulated controller
-    window.show()
     if screenshot is None:
         code = app.exec()
         window.controllers.close()

@@ -254,7 +254,8 @@ class MainWindow(QMainWindow):
         if editor is None:
             return True
         if editor.document().isModified() and self.ask_to_save:
-            answer = QMessageBox.question(self, "Close", f"Save changes to {self.tabs.tabText(index)}?",
+            name = self.tabs.tabText(index).removesuffix(" *")  # the tab's "changed" mark is not part of the name
+            answer = QMessageBox.question(self, "Close", f"Save changes to {name}?",
                                           QMessageBox.StandardButton.Save | QMessageBox.StandardButton.Discard
                                           | QMessageBox.StandardButton.Cancel)
             if answer == QMessageBox.StandardButton.Cancel:
