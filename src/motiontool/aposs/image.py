@@ -268,24 +268,16 @@ def _need(ok: bool, path: str, what: str) -> None:
         raise ImageError(f"{path}: expected {what}", path)
 
 
-def _int(value, path: str) -> int:
-    _need(type(value) is int, path, "an integer")
-    return value
+def _exactly(kind: type, what: str):
+    """A reader of one JSON value of exactly this type (1 is not true, true is not 1, 1.0 is not 1)."""
+    def read(value, path: str):
+        _need(type(value) is kind, path, what)
+        return value
+    return read
 
 
-def _str(value, path: str) -> str:
-    _need(type(value) is str, path, "a text")
-    return value
-
-
-def _bool(value, path: str) -> bool:
-    _need(type(value) is bool, path, "true or false")
-    return value
-
-
-def _list(value, path: str) -> list:
-    _need(type(value) is list, path, "a list")
-    return value
+_int, _str, _bool, _list = (_exactly(int, "an integer"), _exactly(str, "a text"), _exactly(bool, "true or false"),
+                            _exactly(list, "a list"))
 
 
 def _obj(value, path: str, keys: tuple[str, ...]) -> dict:

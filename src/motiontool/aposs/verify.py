@@ -34,6 +34,7 @@ INTERRUPT_KINDS = {"APOS", "IPOS", "MAPOS", "MCPOS", "MIPOS", "POSITION", "INT",
 LONG_ONLY = {"MOD", "RND", "&", "|", "^", "<<", ">>"}
 COMPARISONS = {"==", "!=", "<", "<=", ">", ">="}
 _OPS = {int(op) for op in Op}
+_VARIABLE_OPS = (Op.LOADG, Op.STOREG, Op.REFG, Op.LOADL, Op.STOREL, Op.REFL)
 _ARG_TYPES = {"expr": {L}, "param": {L}, "word": {S}, "string": {S}, "array": {"array"}, "var": {"ref"}}
 
 
@@ -222,20 +223,15 @@ class _Flow:
         elif op == Op.PUSHS:
             index(len(img.strings), "text")
             stack.append(S)
-        elif op in (Op.LOADG, Op.STOREG, Op.REFG):
-            index(len(img.globals), "variable")
-            t = _type(img.globals[arg])
-            if op == Op.LOADG:
-                stack.append(t)
-            elif op == Op.STOREG:
-                pop(t)
+        elif op in _VARIABLE_OPS:
+            if op in (Op.LOADG, Op.STOREG, Op.REFG):
+                index(len(img.globals), "variable")
+                t = _type(img.globals[arg])
             else:
-                stack.append(ref(t))
-        elif op in (Op.LOADL, Op.STOREL, Op.REFL):
-            t = _type(local(False))
-            if op == Op.LOADL:
+                t = _type(local(False))
+            if op in (Op.LOADG, Op.LOADL):
                 stack.append(t)
-            elif op == Op.STOREL:
+            elif op in (Op.STOREG, Op.STOREL):
                 pop(t)
             else:
                 stack.append(ref(t))
