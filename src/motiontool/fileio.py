@@ -89,16 +89,21 @@ def check_writable(path: Path | str) -> None:
     """Raise the OSError a save of ``path`` would meet (missing folder, a folder or device in the way, no
     permission, read-only file system) before any work is done; a trial file is created and removed."""
     target = real_target(path)
+    _existing(target)
+    fd, tmp = _create_temp(target.parent, target.name)
+    os.close(fd)
+    os.unlink(tmp)
+
+
+def _existing(target: Path) -> os.stat_result | None:
+    """The target's status, None when it does not exist yet; a folder or device in the way is refused (a save must
+    never rename over one)."""
     try:
         info = os.stat(target)
     except FileNotFoundError:
-        info = None
-    if info is not None:
-        _refuse_irregular(target, info.st_mode)
-    folder = target.parent
-    fd, tmp = _create_temp(folder, target.name)
-    os.close(fd)
-    os.unlink(tmp)
+        return None
+    _refuse_irregular(target, info.st_mode)
+    return info
 
 
 class AtomicFile:
@@ -108,12 +113,7 @@ class AtomicFile:
     def __init__(self, path: Path | str, text: bool = True, encoding: str = "utf-8"):
         self.path = Path(path)
         self.target = real_target(path)
-        try:
-            self._info: os.stat_result | None = os.stat(self.target)
-        except FileNotFoundError:
-            self._info = None
-        if self._info is not None:
-            _refuse_irregular(self.target, self._info.st_mode)  # never rename over a folder or a device
+        self._info = _existing(self.target)
         self._mode = stat.S_IMODE(self._info.st_mode) if self._info is not None else 0o666 & ~_umask()
         remove_stale_temps(self.target)
         fd, self.tmp = _create_temp(self.target.parent, self.target.name)
