@@ -76,7 +76,7 @@ def _seeds() -> dict[str, list[str | bytes]]:
         trace = Path(scratch) / "t.csv"
         _write_csv(trace, ["time_ms", "4230", "APOS", "TRACKERR"], [[t, 10 * t, t * t / 4, 0.5] for t in range(40)])
         trace_text = trace.read_text()
-    examples = REPO / "tests" / "aposs" / "examples"
+    examples = fuzz_compiler.EXAMPLES_DIR
     images = [compile_source(path=examples / name).image.to_bytes() for name in IMAGE_PROGRAMS]
     return {"zbc": [config_text(config)], "dat": [dat_text(stamping)], "zba": [ZBA],
             "zbo": [(REPO / "tests" / "scope" / "data" / "golden.zbo").read_text(encoding="utf-8")],
