@@ -275,9 +275,9 @@ def run_program(path: Path | None, options: RunOptions, out: TextIO | None = Non
         time_base = link.status().time_ms
         if not prepare_link(link, config, options.settings, options.inputs, options, err, time_base=time_base):
             return EXIT_REFUSED
-        if options.trace:
-            link.call("stream", signals=options.signals, interval_ms=options.trace_interval_ms)
+        if options.trace:  # the writer first: a running clock (--realtime) sends samples at once
             trace = TraceWriter(options.trace, [1], options.signals)
+            link.call("stream", signals=options.signals, interval_ms=options.trace_interval_ms)
         link.download(image.to_bytes(), name=image.name)
         link.start()
         run_until_stopped([link], options, time_base, output, lambda: trace is not None and trace.error is not None)

@@ -43,7 +43,7 @@ class LiveCheck(QObject):
                                         daemon=True)
         self._thread.start()
         jobs = self._jobs
-        window.destroyed.connect(lambda _obj=None: jobs.put(None))  # ends the worker with its window
+        window.destroyed.connect(lambda *_: jobs.put(None))  # ends the worker with its window
 
     @property
     def busy(self) -> bool:
