@@ -118,7 +118,7 @@ def test_array_editor_save_reports_its_failure(window, qtbot, tmp_path):
     folder = share(tmp_path)
     window.actions_by_text["Array Editor"].trigger()
     arrays = window._array_editor
-    save = arrays.actions["Save File"]
+    save = arrays.actions_by_text["Save File"]
     with Answers(qtbot, ChooseFile(str(folder / "a.zba"), then=lambda: shutil.rmtree(folder)), Button.Ok) as answers:
         save.trigger()
     assert answers.seen[1].title == "Array Editor"
