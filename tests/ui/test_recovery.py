@@ -155,3 +155,28 @@ def test_an_autosave_that_cannot_be_written_is_said_once(ide, qtbot, tmp_path):
     window.autosave()
     assert window.messages.toPlainText().count("Autosave failed") == 1
     assert window.isVisible() and editor.toPlainText() == "a = 1\n"
+
+
+def test_restore_replaces_the_empty_untitled_tab_of_the_start_but_keeps_typed_work(ide, qtbot, tmp_path):
+    """At start-up the IDE opens an empty Untitled program, then offers recovery (ui/app.py): after Restore the
+    restored programs take its place instead of standing beside an empty tab; an Untitled with text stays."""
+    def crashed_session(name: str, text: str) -> None:
+        folder = tmp_path / "motiontool" / "recovery" / f"session-99999999{name}-00000000"
+        folder.mkdir(parents=True)
+        (folder / "buffer-1.json").write_text(json.dumps({"version": 2, "original": "", "text": text}))
+
+    crashed_session("8", "x = 1\n")
+    window = ide()
+    window.new_file()
+    with Answers(qtbot, Button.Yes):
+        assert offer_recovery(window) == 1
+    assert [e.toPlainText() for e in window.editors()] == ["x = 1\n"]
+    assert [window.tabs.tabText(i) for i in range(window.tabs.count())] == ["Untitled *"]  # a program without a file, changed
+
+    crashed_session("9", "y = 2\n")
+    other = ide()
+    typed = other.new_file()
+    qtbot.keyClicks(typed, "z = 3")
+    with Answers(qtbot, Button.Yes):
+        assert offer_recovery(other) == 1
+    assert [e.toPlainText() for e in other.editors()] == ["z = 3", "y = 2\n"]

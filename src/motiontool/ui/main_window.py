@@ -356,11 +356,16 @@ class MainWindow(QMainWindow):
         """Reopen the buffers IDEs that are gone left in the recovery folder; returns how many. Each is autosaved
         into this IDE's session before the old copies are deleted."""
         buffers = self.recovery.pending()
+        blank = [e for e in self.editors() if not e.property("path") and not e.property("sample")
+                 and not e.document().isModified() and not e.toPlainText()]  # the start-up's empty Untitled
         for buffer in buffers:
             original = buffer.original
             editor = self._add_editor(Path(original).name if original else "Recovered", buffer.text,
                                       Path(original) if original else None)
             editor.document().setModified(True)
+        for editor in blank if buffers else []:  # the restored programs take its place
+            self.tabs.removeTab(self.tabs.indexOf(editor))
+            editor.deleteLater()
         self.autosaver.run()
         if self.autosaver.failed is None:
             self.recovery.forget_abandoned(delete=True)
