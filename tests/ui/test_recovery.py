@@ -171,7 +171,8 @@ def test_restore_replaces_the_empty_untitled_tab_of_the_start_but_keeps_typed_wo
     with Answers(qtbot, Button.Yes):
         assert offer_recovery(window) == 1
     assert [e.toPlainText() for e in window.editors()] == ["x = 1\n"]
-    assert [window.tabs.tabText(i) for i in range(window.tabs.count())] == ["Untitled *"]  # a program without a file, changed
+    # a program without a file, changed:
+    assert [window.tabs.tabText(i) for i in range(window.tabs.count())] == ["Untitled *"]
 
     crashed_session("9", "y = 2\n")
     other = ide()

@@ -124,3 +124,27 @@ def test_array_editor_save_reports_its_failure(window, qtbot, tmp_path):
     assert answers.seen[1].title == "Array Editor"
     assert answers.seen[1].text == f"Cannot write {folder / 'a.zba'}:\nNo such file or directory."
     assert arrays.isVisible() and arrays.path is None
+
+
+def test_a_file_that_cannot_be_opened_is_said_and_nothing_else_changes(window, qtbot, tmp_path):
+    """File → Open of a device or pipe read until memory ran out (a FIFO never ends); a recent file deleted since,
+    or a folder, let an OSError escape the slot: a traceback on stderr and no word in the IDE."""
+    import os
+
+    fifo = tmp_path / "pipe.m"
+    os.mkfifo(fifo)
+    before = window.tabs.count()
+    with Answers(qtbot, ChooseFile(str(fifo)), Button.Ok) as answers:
+        window.actions_by_text["Open..."].trigger()
+    assert answers.seen[1].title == "Open"
+    assert answers.seen[1].text == f"{fifo}: not a regular file (a device, pipe or socket)"
+    gone = tmp_path / "gone.m"
+    gone.write_text("a = 1\n", encoding="utf-8")
+    window.open_file(gone)
+    window.close_tab(window.tabs.currentIndex())
+    gone.unlink()
+    (recent,) = [a for a in window.recent_menu.actions() if a.text() == str(gone)]
+    with Answers(qtbot, Button.Ok) as answers:
+        recent.trigger()
+    assert answers.seen[0].text == f"{gone}: No such file or directory"
+    assert window.tabs.count() == before and f"Open: {gone}: No such file" in window.messages.toPlainText()

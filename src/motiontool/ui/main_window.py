@@ -139,11 +139,22 @@ class MainWindow(QMainWindow):
             if editor.property("path") == str(path):
                 self.tabs.setCurrentWidget(editor)
                 return editor
-        text = path.read_bytes().decode("utf-8", errors="replace").replace("\r\n", "\n")
+        from motiontool.aposs.preprocess import MAX_SOURCE_BYTES
+        from motiontool.fileio import read_bytes
+
+        data = read_bytes(path, MAX_SOURCE_BYTES, "program file")  # a device or pipe would never end (R4)
+        text = data.decode("utf-8", errors="replace").replace("\r\n", "\n")
         editor = self._add_editor(path.name, text, path)
         editor.load_bookmarks(self.bookmark_store, path=path)
         self._remember_recent(path)
         return editor
+
+    def open_or_report(self, path: Path):
+        """A file the user chose again (a recent file, a Find in Files hit) opens in its window; one that cannot
+        be read any more (deleted, a folder, a pipe) is said in a message, not a traceback (ui/documents.py)."""
+        from motiontool.ui.documents import open_document
+
+        return open_document(self, Path(path))
 
     def open_dialog(self) -> None:
         """File → Open: programs here, .zbc/.zbo/.zba and Testrun files in their windows (ui/documents.py)."""
@@ -181,7 +192,10 @@ class MainWindow(QMainWindow):
         """Settings → Options → Open last file: reopen the most recently used file at start-up."""
         last = self.settings.value("last_file", "")
         if self.settings.value("options/open_last_file", False, type=bool) and last and Path(last).is_file():
-            return self.open_file(Path(last))
+            try:
+                return self.open_file(Path(last))
+            except OSError as exc:  # unreadable since (permissions, grown too large): start with a new program
+                self.messages.ide(f"Cannot open the last file {last}: {exc.strerror or exc}")
         return None
 
     def _add_editor(self, title: str, text: str, path: Path | None) -> CodeEditor:
@@ -208,7 +222,9 @@ class MainWindow(QMainWindow):
         self._update_title()
 
     def _open_location(self, path: str, line: int, col: int) -> None:
-        self.open_file(Path(path)).goto_line(line, col=col)
+        editor = self.open_or_report(Path(path))
+        if isinstance(editor, CodeEditor):
+            editor.goto_line(line, col=col)
 
     def save(self, *, editor: CodeEditor | None = None, path: Path | None = None) -> bool:
         from motiontool.fileio import atomic_write_text

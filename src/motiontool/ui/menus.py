@@ -146,7 +146,7 @@ def fill_recent_menu(w) -> None:
     menu: QMenu = w.recent_menu
     menu.clear()
     for path in w.recent_files():
-        menu.addAction(path, lambda *, p=path: w.open_file(Path(p)))
+        menu.addAction(path, lambda *, p=path: w.open_or_report(Path(p)))
     menu.setEnabled(bool(w.recent_files()))
 
 
