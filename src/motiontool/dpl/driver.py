@@ -11,8 +11,10 @@ from typing import TextIO
 from motiontool.aposs.diagnostics import CompileError, Diagnostic, DiagnosticSink, Location
 from motiontool.dpl import ast
 from motiontool.dpl.check import Symbols, check_program
+from motiontool.dpl.image import MAX_SOURCE_BYTES
 from motiontool.dpl.lexer import tokenize
 from motiontool.dpl.parser import parse
+from motiontool.fileio import read_text
 
 SUFFIX = ".dpl"
 
@@ -43,7 +45,7 @@ def check_source(text: str | None = None, path: Path | str | None = None) -> Che
     sink = DiagnosticSink()
     if text is None:
         try:
-            text = Path(label).read_text(encoding="utf-8")
+            text = read_text(label, MAX_SOURCE_BYTES, "DPL program")  # never a device or pipe (decisions R4)
         except (OSError, UnicodeDecodeError) as exc:
             message = f"cannot read the file: {exc.strerror or exc}" if isinstance(exc, OSError) else \
                 f"the file is not UTF-8 text (byte offset {exc.start})"

@@ -7,6 +7,7 @@ One statement per line, so NEWLINE is a token. Integer variables carry their ``%
 
 from __future__ import annotations
 
+import math
 import re
 
 from motiontool.aposs.diagnostics import CompileError, Location
@@ -32,7 +33,7 @@ _TOKEN = re.compile(r"""
 |(?P<str>"[^"\n]*")
 |(?P<op><>|<=|>=|[-+*/&|<>=()\[\]{},:.])
 |(?P<end>\Z))
-""", re.VERBOSE)
+""", re.VERBOSE | re.ASCII)  # ASCII: \d would take other scripts' digits ("٥٠" as 50; decisions R5)
 _NOTES_OPEN = re.compile(r"[ \t\f\r]*(?:\n[ \t\f\r]*)*\{")
 _BAD_NUMBER_TAIL = re.compile(r"[A-Za-z_%]")
 _NAMES = {"\u2013": "EN DASH", "\u2014": "EM DASH", "\u201c": "LEFT DOUBLE QUOTATION MARK",
@@ -135,7 +136,12 @@ def _bad_character(ch: str) -> str:
 
 def _number(kind: str, word: str, loc: Location, negated: bool) -> Token:
     if kind == "float":
-        return Token(FLOAT, word, float(word), loc)
+        value = float(word)
+        if not math.isfinite(value):
+            raise CompileError(f"constant '{word[:40]}' is outside the floating-point range", loc)
+        return Token(FLOAT, word, value, loc)
+    if kind != "hex" and len(word.lstrip("0")) > 12:  # int() of 4 300 digits and more raises ValueError (L22)
+        raise CompileError(f"constant '{word[:20]}…' ({len(word)} digits) is outside the integer range", loc)
     value = int(word, 16) if kind == "hex" else int(word)
     if kind == "hex":
         if value > 0xFFFFFFFF:
