@@ -1,4 +1,4 @@
-"""Fuzz every reader a user's file reaches: APOSS programs, program images and each file format.
+"""Fuzz every reader a user's file reaches: APOSS programs, program images, DPL programs and each file format.
 
 Run from the repository root:
 
@@ -9,7 +9,7 @@ characters and numbers replaced by edge cases such as other scripts' digits, 5 0
 invalid UTF-8; for images also the JSON body's values, types and instructions) go through the reader a user's file
 goes through - written to a file and read from the path. A case passes when the reader returns or raises its own
 error class; an accepted program image must also run for 50 ms on the embedded controller without an internal fault
-(error 199) or a failed request. Anything else is a crash.
+(error 199) or a failed request, and an accepted DPL program for 50 ms on the simulated APC. Anything else is a crash.
 
 Prints ``name: value unit`` lines per format (``fuzz_files_zbc_cases``, ``…_crashes``, ``…_slowest``) and in total
 (``fuzz_files_cases``, ``fuzz_files_crashes``, ``fuzz_files_slowest``); goals: 0 crashes, slowest below 2 s. Exit
@@ -80,7 +80,8 @@ def _seeds() -> dict[str, list[str | bytes]]:
     images = [compile_source(path=examples / name).image.to_bytes() for name in IMAGE_PROGRAMS]
     return {"zbc": [config_text(config)], "dat": [dat_text(stamping)], "zba": [ZBA],
             "zbo": [(REPO / "tests" / "scope" / "data" / "golden.zbo").read_text(encoding="utf-8")],
-            "testrun": [TESTRUN], "trace": [trace_text], "image": images}
+            "testrun": [TESTRUN], "trace": [trace_text], "image": images,
+            "dpl": [p.read_text(encoding="utf-8") for p in sorted((REPO / "tests" / "dpl" / "programs").glob("*.dpl"))]}
 
 
 SEEDS = _seeds()
@@ -277,6 +278,32 @@ def check_image(data: bytes) -> None:
         raise Crash(f"internal fault: {faults[0]}")
 
 
+def check_dpl(data: bytes, folder: Path) -> None:
+    """A DPL program (the APC's language) read from its file by the checker `motiontool check` uses: diagnostics,
+    never an exception; a program the checker accepts is downloaded to the simulated APC over its link and runs
+    for 50 ms, where a refusal is a LinkError and a program's fault an error event - anything else is a crash."""
+    from motiontool.comms.dpl_program import dpl_link
+    from motiontool.comms.protocol import LinkError
+    from motiontool.dpl.driver import check_source
+    from motiontool.dpl.image import DplImage
+
+    path = folder / "case.dpl"
+    path.write_bytes(data)
+    checked = check_source(path=path)
+    if not checked.ok:
+        return
+    link = dpl_link()
+    try:
+        link.download(DplImage(path.name, checked.source).to_bytes(), name=path.name)
+        link.start()
+        link.advance(50)
+    except LinkError as exc:
+        if "internal" in str(exc):
+            raise Crash(f"the link failed: {exc}") from None
+    finally:
+        link.close()
+
+
 def check_program(text: str) -> None:
     fuzz_compiler.check_compile(text)
 
@@ -294,13 +321,16 @@ def run_case(fmt: str, r, folder: Path) -> tuple[str, object]:
     elif fmt == "image":
         case = mutate_image(r, r.choice(SEEDS["image"]))
         check_image(case)
+    elif fmt == "dpl":
+        case = mutate_file(r, r.choice(SEEDS[fmt]))
+        check_dpl(case, folder)
     else:
         case = mutate_file(r, r.choice(SEEDS[fmt]))
         check_file(fmt, case, folder)
     return fmt, case
 
 
-FORMATS = ["program", "image", "zbc", "dat", "zba", "zbo", "testrun", "trace"]
+FORMATS = ["program", "image", "dpl", "zbc", "dat", "zba", "zbo", "testrun", "trace"]
 
 
 def main(argv: list[str] | None = None) -> int:

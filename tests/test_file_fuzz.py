@@ -34,3 +34,18 @@ def test_mutated_files_are_read_or_refused_with_the_readers_error(fmt):
             fuzz_files.check_file(fmt, data, Path(folder))
 
     case()
+
+
+def test_mutated_dpl_programs_get_diagnostics_and_accepted_ones_run():
+    """A DPL program (tests/dpl/programs mutated) is checked from its file with diagnostics, never an exception: a
+    5 000-digit constant ended in Python's ValueError; one the checker accepts runs 50 ms on the simulated APC."""
+    @settings(max_examples=max(CASES // 4, 10), deadline=None, derandomize=True, database=None,
+              suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+    @given(st.binary(min_size=4, max_size=48).map(ByteRandom))
+    def case(r):
+        data = fuzz_files.mutate_file(r, r.choice(fuzz_files.SEEDS["dpl"]))
+        note(f"dpl: {data!r}")
+        with tempfile.TemporaryDirectory() as folder:
+            fuzz_files.check_dpl(data, Path(folder))
+
+    case()
