@@ -9,6 +9,9 @@ import time
 from PySide6.QtCore import QElapsedTimer, Qt, QTimer
 
 BIG = "".join(f"a{i % 50} = a{(i + 1) % 50} * 3 + {i}\n" for i in range(12_000)) + "POSA\n"
+# Long enough to be still compiling when the typing's check comes (600 ms after the last key) on an idle machine
+# too: BIG alone (~1 s idle) could finish first, and then there was nothing to cancel.
+BIGGER = BIG * 5
 
 
 def test_typing_stays_responsive_while_a_slow_program_is_checked(window, qtbot):
@@ -42,7 +45,7 @@ def test_a_newer_edit_cancels_the_older_check(window, qtbot):
     editor = window.new_file()
     qtbot.waitUntil(lambda: not window.checker.busy, timeout=10_000)
     shown, cancelled = window.checker.finished, window.checker.cancelled
-    editor.setPlainText(BIG)
+    editor.setPlainText(BIGGER)
     qtbot.waitUntil(lambda: window.checker.busy, timeout=10_000)
     qtbot.wait(200)  # the big check is under way
     started = time.monotonic()
