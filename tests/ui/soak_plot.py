@@ -1,7 +1,8 @@
 """Drive a pyqtgraph plot with 8 live curves offscreen and report memory; run as a separate process.
 
-Prints one JSON line: {"frames": N, "rss_kib": [samples...]}. A crash of Qt (e.g. the PySide6 6.12.0
-refcount bug) ends the process abnormally, which the soak test sees as a non-zero exit.
+Prints one JSON line: {"frames": N, "rss_kib": [samples...], "seconds": wall time of the run, "waited_s":
+seconds the plot was ready to run but waited for a CPU (Linux schedstat; null where unknown)}. A crash of Qt
+(e.g. the PySide6 6.12.0 refcount bug) ends the process abnormally, which the soak test sees as a non-zero exit.
 """
 
 import json
@@ -26,6 +27,16 @@ def rss_kib() -> int:
     return 0
 
 
+def run_queue_wait() -> float | None:
+    """Seconds this thread has spent ready to run but waiting for a CPU, or None where the kernel does not say.
+    /proc/thread-self/schedstat: time on a CPU, time waiting on a run queue (ns), timeslices."""
+    try:
+        with open("/proc/thread-self/schedstat", encoding="ascii") as schedstat:
+            return int(schedstat.read().split()[1]) / 1e9
+    except (OSError, IndexError, ValueError):
+        return None
+
+
 def main(seconds: float) -> None:
     app = QApplication(sys.argv[:1])
     plot = pg.PlotWidget()
@@ -37,6 +48,7 @@ def main(seconds: float) -> None:
     state = {"frames": 0, "phase": 0.0}
     samples: list[int] = []
     start = time.monotonic()
+    waited_at_start = run_queue_wait()
 
     def update() -> None:
         state["phase"] += 0.05
@@ -54,7 +66,10 @@ def main(seconds: float) -> None:
     timer.timeout.connect(update)
     timer.start(20)
     app.exec()
-    print(json.dumps({"frames": state["frames"], "rss_kib": samples}))
+    elapsed = time.monotonic() - start
+    waited_at_end = run_queue_wait()
+    waited = None if waited_at_start is None or waited_at_end is None else waited_at_end - waited_at_start
+    print(json.dumps({"frames": state["frames"], "rss_kib": samples, "seconds": elapsed, "waited_s": waited}))
 
 
 if __name__ == "__main__":
