@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from PySide6.QtWidgets import QFileDialog
+from PySide6.QtWidgets import QFileDialog, QLineEdit
 
 EXAMPLE_ZBA = ("Date,2009:07:27 10:52\n"  # from the manual's example (DG L4574-4590)
                'User,,130,Height,50,100,10,1000,"Maximum height of any unit",1\n'
@@ -65,5 +65,9 @@ class Files:
         else:
             self.count += 1
             path = self.folder / f"saved{self.count}.{extensions[0]}"
+        # the file name field too: QFileDialog.selectFile leaves a field that has the keyboard focus alone, and
+        # accept() with an empty field only opens the folder; whether the field had the focus when the reply came
+        # depended on window activation timing, so the dialog stayed open now and then
+        dialog.findChild(QLineEdit).setText(str(path))
         dialog.selectFile(str(path))
         dialog.accept()

@@ -16,6 +16,7 @@ import sys
 import traceback
 
 import pytest
+import shiboken6
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QAction, QKeySequence, QShortcut
 from PySide6.QtWidgets import (
@@ -133,6 +134,8 @@ class Walk:
     def new_windows(self) -> list[QWidget]:
         fresh = []
         for widget in QApplication.topLevelWidgets():
+            if not shiboken6.isValid(widget):  # a stale wrapper PySide handed out for a widget Qt deleted
+                continue
             if id(widget) in self.known or not widget.isVisible() or isinstance(widget, QMenu):
                 continue
             self.known.add(id(widget))
