@@ -82,6 +82,7 @@ class LinkBridge(QObject):
     def _lost(self, _text: str) -> None:
         if self.link is None:
             return
+        self.status_worker.stop()
         self.link.unsubscribe(self._callback)
         self.link = None  # the next command that needs the controller reconnects (DG 2064-2066)
         self.connection_changed.emit("lost")
@@ -126,5 +127,10 @@ class LinkBridge(QObject):
                 self.poll()
         elif event.kind == "samples":
             self.samples.emit(event.data)
+        elif event.kind == "connection":
+            # the link saw the loss itself (a CANopen heartbeat that stopped, a failed event poll): say so now rather
+            # than when a status request times out; a queued event of a link left since is judged by the current one
+            if cid == self.controller_id and self.link is not None and not getattr(self.link, "alive", True):
+                self._lost(event.text)
         elif event.kind == "message":  # the controller side tells something: a link timeout, events it dropped
             self.program_event.emit(event.time_ms, event.text, cid)
