@@ -12,6 +12,7 @@ reaches sys.excepthook fails the test with the action that raised it.
 
 from __future__ import annotations
 
+import gc
 import sys
 import traceback
 
@@ -132,6 +133,20 @@ class Walk:
         self.settle()
 
     def new_windows(self) -> list[QWidget]:
+        # topLevelWidgets() releases the GIL while Qt builds the list; a garbage collection started meanwhile by
+        # another thread (live check, status worker) can destroy a garbage widget or its child windows and leave
+        # dangling pointers in the list (a segmentation fault here in a full run). So collect here, on the GUI
+        # thread, and let no collection run until the list is read (ui/gui_gc.py does this for the IDE).
+        gc.collect()
+        collecting = gc.isenabled()
+        gc.disable()
+        try:
+            return self._new_windows()
+        finally:
+            if collecting:
+                gc.enable()
+
+    def _new_windows(self) -> list[QWidget]:
         fresh = []
         for widget in QApplication.topLevelWidgets():
             if not shiboken6.isValid(widget):  # a stale wrapper PySide handed out for a widget Qt deleted

@@ -38,6 +38,9 @@ def run_gui(open_file: Path | None = None, screenshot: Path | None = None) -> in
     app = QApplication.instance() or QApplication(sys.argv[:1])
     app.setApplicationName("motiontool")
     app.setOrganizationName("motiontool")
+    from motiontool.ui.gui_gc import install as collect_on_gui_thread
+
+    collect_on_gui_thread(app)  # never destroy a widget from a worker thread
     if screenshot is not None:  # a screenshot is reproducible: default settings, default size
         import tempfile
 
