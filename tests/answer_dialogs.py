@@ -38,7 +38,10 @@ class Answers:
         self.answers = list(answers)
         self.seen: list[Seen] = []
         self.unexpected: list[str] = []
-        self._handled: set[int] = set()
+        # a mark on the dialog itself, not id(dialog): a closed dialog's wrapper is freed and the next dialog's
+        # wrapper may get its address, so an id set took a new dialog for an answered one and left the test
+        # hanging in its modal loop (a full run stopped in test_save_failures' Compile to file)
+        self._mark = f"answered_by_{id(self)}"
         self._timer = QTimer()
         self._timer.setInterval(20)
         self._timer.timeout.connect(self._poll)
@@ -55,9 +58,9 @@ class Answers:
 
     def _poll(self) -> None:
         dialog = QApplication.activeModalWidget()
-        if dialog is None or id(dialog) in self._handled or not dialog.isVisible():
+        if dialog is None or dialog.property(self._mark) or not dialog.isVisible():
             return
-        self._handled.add(id(dialog))
+        dialog.setProperty(self._mark, True)
         text = dialog.text() if isinstance(dialog, QMessageBox) else ""
         if not self.answers or (isinstance(dialog, QMessageBox) != (not isinstance(self.answers[0], ChooseFile))) \
                 or (isinstance(dialog, QMessageBox) and dialog.button(self.answers[0]) is None):
