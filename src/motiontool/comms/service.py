@@ -15,28 +15,14 @@ from motiontool.kernel.arrays import MAX_ARRAY_ELEMENTS
 from motiontool.kernel.controller import Controller, Event
 from motiontool.kernel.errors import ControllerError
 from motiontool.kernel.io import ANALOG_INPUTS, FC_INPUTS, MCO_INPUTS
+
+# the signals for streaming and traces are the drive's CANopen object 0x2510: one table, kept with the dictionary
+from motiontool.kernel.objdict import SIGNALS
 from motiontool.kernel.programs import ProgramStore
 from motiontool.kernel.sysvars import read_sysvar, sysvar_name
 from motiontool.kernel.vm import DEFAULT_STACK_SIZE
 
 RESETS = ("parameters", "user", "arrays", "all")  # Controller → Reset (op_reset)
-
-# Signals for streaming and traces: name → reader (user units where the manual reports them so).
-SIGNALS: dict[str, Callable[[Controller], float]] = {
-    "APOS": lambda c: c.uu(c.axis.apos),
-    "CPOS": lambda c: c.uu(c.axis.cpos),
-    "TRACKERR": lambda c: c.axis.scaling.qc_to_uu(c.axis.tracking_error),
-    "AVEL": lambda c: c.avel(),
-    "CVEL": lambda c: c.axis.scaling.velocity_uu_per_s(c.axis.profile.velocity),
-    "AXEND": lambda c: c.axis.axend(),
-    "STAT": lambda c: c.stat(),
-    "ERRNO": lambda c: c.error,
-    "SPEEDREF": lambda c: round(c.axis.reference * 1000),
-    "INPUTS": lambda c: c.io.input_word(),
-    "OUTPUTS": lambda c: c.io.output_word(),
-    "MAPOS": lambda c: c.master.mapos,   # master position and velocity in master qc, qc/s (CR: MAPOS, MAVEL)
-    "MAVEL": lambda c: c.master.mavel,
-}
 
 
 def signal_reader(name: str) -> Callable[[Controller], float]:
