@@ -16,10 +16,9 @@ from motiontool.kernel import io as iomod
 from motiontool.kernel import objdict
 from motiontool.kernel.arrays import ArrayMemory
 from motiontool.kernel.axis import Axis, Gains
-from motiontool.kernel.cam import curve_cycle_length, master_curve_position
 from motiontool.kernel.canport import CanPort
 from motiontool.kernel.errors import AXIS_ERRORS, ControllerError, error_text
-from motiontool.kernel.interrupts import Interrupts
+from motiontool.kernel.interrupts import Interrupts, interrupt_readings
 from motiontool.kernel.markers import Markers
 from motiontool.kernel.master import Master, MasterConfig
 from motiontool.kernel.parameters import ParameterStore, is_axis_parameter
@@ -434,28 +433,7 @@ class Controller:
         return 0 if value is None else value
 
     def _serve_interrupts(self, vm: VM) -> None:
-        sources = self.interrupts.sources
-        actions = []
-        if sources:
-            kinds = {s.kind for s in sources}
-            positions = {"APOS": self.uu(self.axis.apos)} if "APOS" in kinds else {}
-            if "MAPOS" in kinds:  # master qc, like the MAPOS readout (decision K46)
-                positions["MAPOS"] = self.master.mapos
-            if "IPOS" in kinds or "MIPOS" in kinds:  # distance since the last marker (DG 7158)
-                positions["IPOS"] = self.uu(self.axis.apos) - self.uu(self.markers.ipos_qc())
-                positions["MIPOS"] = self.master.mapos - self.markers.mipos()
-            if "MCPOS" in kinds:  # CAM box: curve master position in MU (DG 1748-1772)
-                mcpos = master_curve_position(self)
-                if mcpos is not None:
-                    positions["MCPOS"] = mcpos
-                    positions["MCPOS_CYCLE"] = curve_cycle_length(self)
-            statbits = self.statbits() if "STATBIT" in kinds else 0
-            # ON COMBIT: "the first 32 Bits of the process data memory" (CR 2515) = PDO[1001], bytes 1-4 of PDO 1,
-            # which a received RxPDO 1 fills ("as soon as the bit n of the PDO changes", CR 3334; K53)
-            combits = self.can.pdo.read_element(1001) & 0xFFFFFFFF if "COMBIT" in kinds else 0
-            inputs = self.io.inputs
-            actions = self.interrupts.detect(self.time_ms, lambda n: inputs.get(n, 0), positions, statbits, None,
-                                             combits)
+        actions = self.interrupts.detect(self.time_ms, *interrupt_readings(self)) if self.interrupts.sources else []
         for out, level in actions:
             self.io.outputs[out] = level
         if self.error and self.interrupts.error_sub is not None and not any(
@@ -569,6 +547,8 @@ class Controller:
         info = vm.image.interrupts[index]
         self.interrupts.define(info.kind, info.sign, info.subprogram, operands, self.time_ms, info.has_value,
                                info.setout, info.toin, info.delete)
+        # the new source starts from the state at its definition, so a change in the next tick fires it
+        self.interrupts.prime(*interrupt_readings(self))
 
     def read_pseudo(self, which: int, index: int) -> int:
         if which == 0:

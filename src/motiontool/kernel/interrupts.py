@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from motiontool.kernel.cam import curve_cycle_length, master_curve_position
 from motiontool.kernel.errors import ControllerError
 
 POSITION_KINDS = ("APOS", "IPOS", "MAPOS", "MCPOS", "MIPOS")
@@ -94,20 +95,33 @@ class Interrupts:
             raise ControllerError(error, f"more than {limit} {group} interrupts")
 
     # --- detection ------------------------------------------------------------------------------------
-    def detect(self, now: int, read_input, positions: dict[str, float], statbits: int, in_handler_of,
-               combits: int = 0) -> list:
+    @staticmethod
+    def _value(s: Source, read_input, positions: dict[str, float], statbits: int, combits: int):
+        """What an edge or crossing source watches, now; None for the others (and an absent position)."""
+        kind = s.kind
+        if kind == "INT":
+            return read_input(abs(s.number))
+        if kind in POSITION_KINDS:
+            return positions.get(kind)
+        if kind in ("STATBIT", "COMBIT"):  # bit n 1-based, -n: the bit is cleared (like ON INT -n)
+            return ((statbits if kind == "STATBIT" else combits) >> (abs(s.number) - 1)) & 1
+        return None
+
+    def prime(self, read_input, positions: dict[str, float], statbits: int, combits: int = 0) -> None:
+        """Sources defined just now take the state at their definition as their start: a bit, input or position
+        that changes in the very next tick fires them (sampling only at the next detection missed that change)."""
+        for s in self.sources:
+            if s.last is None:
+                s.last = self._value(s, read_input, positions, statbits, combits)
+
+    def detect(self, now: int, read_input, positions: dict[str, float], statbits: int, combits: int = 0) -> list:
         """Set pending flags for sources that fired this tick; returns SETOUT actions [(out, value)].
         `statbits`: the 32 status bits of ON STATBIT; `combits`: the first 32 bits of the process data (ON COMBIT)."""
         actions = []
         for s in self.sources:
             kind = s.kind
             fired = False
-            if kind == "INT":
-                value = read_input(abs(s.number))
-                if s.last is not None:
-                    fired = (value and not s.last) if s.number > 0 else (s.last and not value)
-                s.last = value
-            elif kind in ("TIME", "PERIOD"):
+            if kind in ("TIME", "PERIOD"):
                 if now >= s.next_time:
                     fired = True
                     if kind == "PERIOD":
@@ -136,8 +150,8 @@ class Interrupts:
                             level = 1 - level
                     actions.append((abs(out), level))
                     fired = False
-            elif kind in ("STATBIT", "COMBIT"):  # bit n 1-based, -n: the bit is cleared (like ON INT -n)
-                value = ((statbits if kind == "STATBIT" else combits) >> (abs(s.number) - 1)) & 1
+            elif kind in EDGE_KINDS:
+                value = self._value(s, read_input, positions, statbits, combits)
                 if s.last is not None:
                     fired = bool(value and not s.last) if s.number > 0 else bool(s.last and not value)
                 s.last = value
@@ -184,3 +198,25 @@ class Interrupts:
             self.all_disabled = False
         else:
             self.disabled.discard(kind)
+
+
+def interrupt_readings(ctl) -> tuple:
+    """What the sources of `ctl` watch, now: (read_input, positions, statbits, combits) for detect/prime."""
+    kinds = {s.kind for s in ctl.interrupts.sources}
+    positions = {"APOS": ctl.uu(ctl.axis.apos)} if "APOS" in kinds else {}
+    if "MAPOS" in kinds:  # master qc, like the MAPOS readout (decision K46)
+        positions["MAPOS"] = ctl.master.mapos
+    if "IPOS" in kinds or "MIPOS" in kinds:  # distance since the last marker (DG 7158)
+        positions["IPOS"] = ctl.uu(ctl.axis.apos) - ctl.uu(ctl.markers.ipos_qc())
+        positions["MIPOS"] = ctl.master.mapos - ctl.markers.mipos()
+    if "MCPOS" in kinds:  # CAM box: curve master position in MU (DG 1748-1772)
+        mcpos = master_curve_position(ctl)
+        if mcpos is not None:
+            positions["MCPOS"] = mcpos
+            positions["MCPOS_CYCLE"] = curve_cycle_length(ctl)
+    statbits = ctl.statbits() if "STATBIT" in kinds else 0
+    # ON COMBIT: "the first 32 Bits of the process data memory" (CR 2515) = PDO[1001], bytes 1-4 of PDO 1,
+    # which a received RxPDO 1 fills ("as soon as the bit n of the PDO changes", CR 3334; K53)
+    combits = ctl.can.pdo.read_element(1001) & 0xFFFFFFFF if "COMBIT" in kinds else 0
+    inputs = ctl.io.inputs
+    return (lambda n: inputs.get(n, 0)), positions, statbits, combits
