@@ -294,6 +294,8 @@ def test_completion_popup_after_three_letters(qtbot, editor):
     qtbot.waitUntil(popup.isVisible)
     shown = [popup.model().index(i, 0).data() for i in range(popup.model().rowCount())]
     assert "POSA" in shown and all(name.upper().startswith("POS") for name in shown)
+    assert not popup.currentIndex().isValid()  # nothing chosen yet: Enter would end the line (issue 23)
+    press(qtbot, popup, Qt.Key.Key_Down)
     assert popup.currentIndex().data() == "POSA"
     press(qtbot, popup, Qt.Key.Key_Return)
     assert editor.toPlainText() == "POSA"

@@ -2,8 +2,9 @@
 
 QPlainTextEdit plus: AposHighlighter colours, a left margin with line numbers, bookmark triangles and
 error/warning marks, current-line highlight, bookmarks kept on the text blocks (they move with edits),
-diagnostics as wavy underlines with tooltips, completion (Ctrl-Space and after 3 typed letters), hover help
-for commands and parameters, the manual's context menu and keyboard functions, and key macros.
+diagnostics as wavy underlines with tooltips, completion (Ctrl-Space and after 3 typed letters; Enter takes a
+row only once one is chosen with the arrow keys, else it ends the line: I17), hover help for commands and
+parameters, the manual's context menu and keyboard functions, and key macros.
 
 The editor handles its own keys (it accepts ShortcutOverride for them), so the keys work the same whether
 or not the main window binds its Edit-menu entries; the window may connect the entries to the same methods.
@@ -16,7 +17,7 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import NamedTuple
 
-from PySide6.QtCore import QEvent, QPoint, QRect, Qt, QTimer, Signal
+from PySide6.QtCore import QEvent, QModelIndex, QObject, QPoint, QRect, Qt, QTimer, Signal
 from PySide6.QtGui import (
     QColor,
     QContextMenuEvent,
@@ -51,6 +52,7 @@ AUTO_COMPLETE_LETTERS = 3
 _EDITING = frozenset({"cut", "paste", "cut_line", "cut_paragraph", "delete_word_end", "undo", "redo",
                       "lowercase_selection", "uppercase_selection", "insert_line_above", "toggle_overwrite",
                       "show_replace_dialog", "repeat_dialog", "toggle_recording", "complete"})
+_CHOOSING_KEYS = frozenset({Qt.Key.Key_Up, Qt.Key.Key_Down, Qt.Key.Key_PageUp, Qt.Key.Key_PageDown})
 _MODIFIER_KEYS = frozenset({Qt.Key.Key_Shift, Qt.Key.Key_Control, Qt.Key.Key_Alt, Qt.Key.Key_Meta,
                             Qt.Key.Key_AltGr})
 _DIAG_TOKEN_RE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*|\d[A-Za-z0-9_.]*|\"[^\"]*\"?|\S")
@@ -120,6 +122,8 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
         self._completer.setMaxVisibleItems(12)
         self._completer.popup().setItemDelegate(HintDelegate(self._completer.popup()))
         self._completer.activated[str].connect(self.insert_completion)
+        self._completion_chosen = False  # a row picked with the arrow keys: only then does Enter take it
+        self._completer.popup().installEventFilter(self)  # after the completer's own filter, so it runs first
         self._symbols_revision = -1
         self._popup_width = 360
         self._symbol_timer = QTimer(self, singleShot=True, interval=400, timeout=self._refresh_symbols)
@@ -376,10 +380,13 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
         if not popup.isVisible() and (force or self._symbols_revision < 0):
             self._refresh_symbols()
         self._completer.setCompletionPrefix(prefix)
-        if self._completer.completionCount() == 0:
-            popup.hide()
+        count = self._completer.completionCount()
+        if count == 0 or count == 1 and self._completer.currentCompletion().upper() == prefix.upper():
+            popup.hide()  # nothing to offer, or the word is already complete
             return False
-        popup.setCurrentIndex(self._completer.completionModel().index(0, 0))
+        # no row is chosen until the user picks one: Enter typed at speed must end the line (issue 23)
+        popup.setCurrentIndex(QModelIndex())
+        self._completion_chosen = False
         rect = self.cursorRect()
         rect.translate(self.viewport().pos())
         rect.setWidth(max(360, self._popup_width))
@@ -413,10 +420,26 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
                 return True
         return super().event(event)
 
+    def eventFilter(self, watched: QObject, event: QEvent) -> bool:  # noqa: N802 (Qt override)
+        if (watched is self._completer.popup() and event.type() == QEvent.Type.KeyPress
+                and isinstance(event, QKeyEvent) and event.key() in _CHOOSING_KEYS):
+            self._completion_chosen = True
+        return super().eventFilter(watched, event)
+
     def keyPressEvent(self, event: QKeyEvent) -> None:  # noqa: N802 (Qt override)
         popup = self._completer.popup()
-        if popup.isVisible() and event.key() in (Qt.Key.Key_Enter, Qt.Key.Key_Return, Qt.Key.Key_Escape,
-                                                 Qt.Key.Key_Tab, Qt.Key.Key_Backtab):
+        key = event.key()
+        if popup.isVisible() and key in (Qt.Key.Key_Enter, Qt.Key.Key_Return) and not (
+                self._completion_chosen and popup.currentIndex().isValid()):
+            popup.hide()  # nothing chosen: Enter ends the line as if the popup were not there
+            event.accept()  # (it came through the popup: accepted, the completer leaves it alone)
+        elif popup.isVisible() and key == Qt.Key.Key_Tab and not popup.currentIndex().isValid():
+            self.insert_completion(self._completer.completionModel().index(0, 0).data())  # Tab takes the first
+            popup.hide()
+            event.accept()
+            return
+        elif popup.isVisible() and key in (Qt.Key.Key_Enter, Qt.Key.Key_Return, Qt.Key.Key_Escape,
+                                           Qt.Key.Key_Tab, Qt.Key.Key_Backtab):
             event.ignore()  # the completer's popup takes these
             return
         if event.key() in _MODIFIER_KEYS:  # a modifier alone neither records nor breaks a two-key shortcut

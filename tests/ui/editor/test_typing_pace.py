@@ -1,0 +1,82 @@
+"""Typing a program at a person's pace (issue 23 item 1): the completion popup may open while one types, and
+Enter still ends the line unless a completion was chosen from the list (arrow keys or a click).
+
+Keys go where a keyboard sends them: to the completion popup while it is open (it grabs the keyboard), else to
+the editor, one key every ~120 ms so the popup has time to open as it does for a person."""
+
+from __future__ import annotations
+
+from PySide6.QtCore import Qt
+from PySide6.QtGui import QTextCursor
+from PySide6.QtTest import QTest
+from PySide6.QtWidgets import QApplication
+
+PACE_MS = 120
+
+
+def target(editor):
+    return QApplication.activePopupWidget() or editor
+
+
+def key(qtbot, editor, k) -> None:
+    QTest.keyClick(target(editor), k)
+    qtbot.wait(PACE_MS)
+
+
+def human_type(qtbot, editor, text: str) -> list[bool]:
+    """Type `text` one key at a time; returns, per key, whether the completion popup was open when it was hit."""
+    seen = []
+    for ch in text:
+        seen.append(editor.completer.popup().isVisible())
+        if ch == "\n":
+            QTest.keyClick(target(editor), Qt.Key.Key_Return)
+        else:
+            QTest.keyClicks(target(editor), ch)
+        qtbot.wait(PACE_MS)
+    return seen
+
+
+def test_enter_after_a_keyword_or_a_name_ends_the_line_even_with_the_popup_open(qtbot, editor):
+    editor.setPlainText("counter = 0\n")
+    editor.moveCursor(QTextCursor.MoveOperation.End)
+    typed = "WHILE counter DO\nENDWHILE\nPRINT 1\nIF counter THEN\nENDIF\nEXIT\nPRINT counter\nx = 1"
+    popup_open = human_type(qtbot, editor, typed)
+    assert editor.toPlainText() == "counter = 0\n" + typed
+    assert any(popup_open), "the completion popup never opened: the test would not show the defect"
+
+
+def test_down_and_enter_choose_a_completion_and_enter_without_a_choice_ends_the_line(qtbot, editor):
+    editor.setPlainText("")
+    human_type(qtbot, editor, "POS")
+    popup = editor.completer.popup()
+    qtbot.waitUntil(popup.isVisible)
+    assert not popup.currentIndex().isValid()        # nothing is chosen until the user picks a row
+    key(qtbot, editor, Qt.Key.Key_Down)              # the first row: POSA
+    assert popup.currentIndex().data() == "POSA"
+    key(qtbot, editor, Qt.Key.Key_Return)
+    assert editor.toPlainText() == "POSA" and not popup.isVisible()
+    human_type(qtbot, editor, " 0\nDELA")             # DELAY offered, not chosen
+    qtbot.waitUntil(popup.isVisible)
+    key(qtbot, editor, Qt.Key.Key_Return)
+    assert editor.toPlainText() == "POSA 0\nDELA\n" and not popup.isVisible()
+    human_type(qtbot, editor, "WAITA")
+    qtbot.waitUntil(popup.isVisible)
+    key(qtbot, editor, Qt.Key.Key_Tab)               # Tab without a choice takes the first row
+    assert editor.toPlainText() == "POSA 0\nDELA\nWAITAX" and not popup.isVisible()
+
+
+def test_a_click_on_a_row_chooses_it(qtbot, editor):
+    editor.setPlainText("")
+    human_type(qtbot, editor, "DELA")
+    popup = editor.completer.popup()
+    qtbot.waitUntil(popup.isVisible)
+    row = next(r for r in range(popup.model().rowCount()) if popup.model().index(r, 0).data() == "DELAY")
+    rect = popup.visualRect(popup.model().index(row, 0))
+    qtbot.mouseClick(popup.viewport(), Qt.MouseButton.LeftButton, pos=rect.center())
+    assert editor.toPlainText() == "DELAY" and not popup.isVisible()
+
+
+def test_an_exact_and_only_match_opens_no_popup(qtbot, editor):
+    editor.setPlainText("")
+    human_type(qtbot, editor, "ENDWHILE")
+    assert not editor.completer.popup().isVisible()
