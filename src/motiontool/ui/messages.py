@@ -1,7 +1,9 @@
 """The Communication pane (ide-spec 1.2, 1.43): IDE messages and the controller's PRINT output, each
 controller line prefixed with its ID ("[01] text"); optional log file with cached writes. A click or a
 double-click on a message that names a program line (a compiler message `file:line:col: error: …`, a
-controller error `[01] error 71: … (line 6)`) asks the window to show that line (DG 2479-2483, 2993)."""
+controller error `[01] error 71: … (line 6)`) asks the window to show that line (DG 2479-2483, 2993).
+Long lines wrap, so no message is hidden sideways; Ctrl+C copies the selection and a selection survives new
+messages; the context menu adds Clear (decision I18)."""
 
 from __future__ import annotations
 
@@ -9,9 +11,17 @@ import contextlib
 import re
 from pathlib import Path
 
-from PySide6.QtCore import Qt, Signal
-from PySide6.QtGui import QFontDatabase, QMouseEvent, QTextCursor
-from PySide6.QtWidgets import QPlainTextEdit, QWidget
+from PySide6.QtCore import QEvent, Qt, Signal
+from PySide6.QtGui import (
+    QContextMenuEvent,
+    QFontDatabase,
+    QKeyEvent,
+    QKeySequence,
+    QMouseEvent,
+    QTextCursor,
+    QTextOption,
+)
+from PySide6.QtWidgets import QMenu, QPlainTextEdit, QWidget
 
 MAX_LINES = 20_000  # keep the pane light during long runs; the log file keeps everything
 COMPILER_MESSAGE = re.compile(r"^(?P<file>.+?):(?P<line>\d+):(?P<col>\d+): (?:error|warning|note):")
@@ -38,7 +48,9 @@ class MessagesPane(QPlainTextEdit):
         self.setReadOnly(True)
         self.setFont(QFontDatabase.systemFont(QFontDatabase.SystemFont.FixedFont))
         self.setMaximumBlockCount(MAX_LINES)
-        self.setLineWrapMode(QPlainTextEdit.LineWrapMode.NoWrap)
+        # wrapped: with NoWrap one long line scrolled the view sideways and cut the start off every later one
+        self.setLineWrapMode(QPlainTextEdit.LineWrapMode.WidgetWidth)
+        self.setWordWrapMode(QTextOption.WrapMode.WrapAtWordBoundaryOrAnywhere)
         self._log = None
         self._pending: list[str] = []
 
@@ -60,6 +72,37 @@ class MessagesPane(QPlainTextEdit):
         if place is not None:
             self.locationActivated.emit(*place)
 
+    # --- Ctrl+C, Select All and the context menu's Clear -------------------------------------------------
+    def event(self, event: QEvent) -> bool:
+        # the window's Edit ▸ Copy (Ctrl+C) copies from the program editor: in this pane the pane's own copy wins
+        if (event.type() == QEvent.Type.ShortcutOverride and isinstance(event, QKeyEvent)
+                and any(event.matches(k) for k in (QKeySequence.StandardKey.Copy, QKeySequence.StandardKey.SelectAll))):
+            event.accept()
+            return True
+        return super().event(event)
+
+    def keyPressEvent(self, event: QKeyEvent) -> None:  # noqa: N802 (Qt override)
+        if event.matches(QKeySequence.StandardKey.Copy):
+            self.copy()
+        elif event.matches(QKeySequence.StandardKey.SelectAll):
+            self.selectAll()
+        else:
+            super().keyPressEvent(event)
+
+    def build_context_menu(self, pos) -> QMenu:
+        """Qt's Copy / Select All, then Clear (the log file keeps what it has)."""
+        menu = self.createStandardContextMenu(pos)
+        menu.addSeparator()
+        clear = menu.addAction("Clear")
+        clear.setEnabled(not self.document().isEmpty())
+        clear.triggered.connect(self.clear)
+        return menu
+
+    def contextMenuEvent(self, event: QContextMenuEvent) -> None:  # noqa: N802 (Qt override)
+        menu = self.build_context_menu(event.pos())
+        menu.exec(event.globalPos())
+        menu.deleteLater()
+
     def ide(self, text: str) -> None:
         """A message of the IDE itself (compiler output, connection)."""
         self._append(text)
@@ -74,8 +117,10 @@ class MessagesPane(QPlainTextEdit):
             self._append("\n".join(f"[{controller_id:02d}] {text}" for text in texts))
 
     def _append(self, line: str) -> None:
+        selecting = self.textCursor().hasSelection()
         self.appendPlainText(line)
-        self.moveCursor(QTextCursor.MoveOperation.End)
+        if not selecting:  # follow the output, but never take away a selection the user is about to copy
+            self.moveCursor(QTextCursor.MoveOperation.End)
         if self._log is not None:
             self._pending.append(line)
             if len(self._pending) >= 100 or "\n" in line:
