@@ -36,5 +36,9 @@ class ArrayMemory:
         return array
 
     def delete(self) -> None:
-        """DELETE ARRAYS / Controller → Reset → Arrays."""
+        """DELETE ARRAYS / Controller → Reset → Arrays. CR 1003-1005: "If DELETE ARRAYS is carried out after a DIM
+        assignment in the program, it is then no longer possible to access the array elements": a DIM array the
+        program holds keeps no element, so every index is outside it (171, decision K119)."""
+        for array in self.arrays:
+            array.data = []
         self.arrays.clear()

@@ -308,6 +308,9 @@ COMMANDS.update({
     "MIPOS": lambda c, vm, a: c.markers.mipos(),
     "APOSDIFF": lambda c, vm, a: _posdiff(c.uu(c.axis.apos), a[0]),
     "CPOSDIFF": lambda c, vm, a: _posdiff(c.uu(c.axis.cpos), a[0]),
+    "IPOSDIFF": lambda c, vm, a: _posdiff(c.uu(c.markers.ipos_qc()), a[0]),   # CR 1817-1842
+    "MAPOSDIFF": lambda c, vm, a: _posdiff(c.master.mapos, a[0]),             # CR 2152-2174, MAPOS as read (K46)
+    "MIPOSDIFF": lambda c, vm, a: _posdiff(c.markers.mipos(), a[0]),          # CR 2316-2338
     "SYNCSTAT": lambda c, vm, a: c.syncstat(),
     "SYNCERR": lambda c, vm, a: c.syncerr(),
     "MAPOS": lambda c, vm, a: c.master.mapos,
