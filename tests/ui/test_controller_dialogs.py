@@ -155,7 +155,8 @@ def test_error_history_lists_the_error_with_its_line_writes_a_file_and_a_double_
     assert row["Error"] == "171" and row["Line"] == "5" and row["Message"] == "Array too small"
     assert row["Offset"].isdigit() and float(row["Age"]) >= 0
     text = target.read_text(encoding="utf-8").splitlines()
-    assert text[1] == "#\tTime\tAge\tError\tMessage\tData\tOffset\tLine" and text[2].split("\t")[3] == "171"
+    assert text[1] == "#\tTime\tAge\tError\tMessage\tData\tOffset\tLine\tProgram"
+    assert text[2].split("\t")[3] == "171" and text[2].split("\t")[8] == "Untitled.m"
     assert window.current_editor() is editor and editor.textCursor().blockNumber() + 1 == 5
 
 

@@ -19,6 +19,7 @@ from motiontool.ui.compiler_settings import check as compiler_checks
 from motiontool.ui.controllers import APC_SIM, InterfaceConfig
 
 DEFAULT_CONTROLLER = ("embedded", 1)
+MAX_NOTED_ERRORS = 1000  # a controller keeps its last 50; this bounds a window that runs for days
 
 
 @dataclass
@@ -34,6 +35,21 @@ class Development:
         self.w = window
         self.ran: dict[int, object] = {}  # controller ID → the editor whose program was last started there
         self.images: dict[int, object] = {}  # controller ID → the image downloaded there (Error History's Offset)
+        # (controller ID, time_ms, error number) → (editor, program label) of the program that raised it: the
+        # controller's error history has no program, so the IDE notes it as each error arrives (I19)
+        self.error_programs: dict[tuple[int, int, int], tuple[object, str]] = {}
+
+    def note_error(self, controller_id: int, time_ms: int, number: int) -> None:
+        """An error event: remember which program ran there (the editor may be closed later; its label stays)."""
+        editor = self.ran.get(controller_id)
+        if editor is None or editor not in self.w.editors():
+            return  # not started from this window: the IDE cannot tell which program it was
+        self.error_programs[(controller_id, int(time_ms), int(number))] = (editor, self.w.program_label(editor))
+        while len(self.error_programs) > MAX_NOTED_ERRORS:
+            del self.error_programs[next(iter(self.error_programs))]
+
+    def error_program(self, controller_id: int, time_ms: int, number: int) -> tuple[object, str] | None:
+        return self.error_programs.get((controller_id, int(time_ms), int(number)))
 
     # --- connection (ui/connection.py) ------------------------------------------------------------------
     def connect_default(self) -> bool:

@@ -1,8 +1,10 @@
 """Controller → Error History (DG 2982-3027, ide-spec 2.31): the controller's last 50 errors, newest first, as
 the manual's table — #, Time (the controller's clock), Age (seconds since the error, recomputed on Refresh),
-Error, Message, Data, Offset (in the compiled program), Line. Refresh reads it again, Write saves a
-tab-separated text file a spreadsheet imports, Clear empties it; a double-click closes the dialog and shows the
-line in the program that ran on the controller ("The IDE cannot check that the source matches")."""
+Error, Message, Data, Offset (in the compiled program), Line, and Program: the file of the program that raised
+it, as the IDE noted when the error arrived (the controller does not record it). Refresh reads it again, Write
+saves a tab-separated text file a spreadsheet imports, Clear empties it; a double-click closes the dialog and
+shows the line in that program, its tab brought to the front or its file opened (I19; "The IDE cannot check
+that the source matches")."""
 
 from __future__ import annotations
 
@@ -23,7 +25,7 @@ from PySide6.QtWidgets import (
 
 from motiontool.comms.protocol import LinkError
 
-COLUMNS = ("#", "Time", "Age", "Error", "Message", "Data", "Offset", "Line")
+COLUMNS = ("#", "Time", "Age", "Error", "Message", "Data", "Offset", "Line", "Program")
 
 
 def statement_offset(image, line: int | None) -> int | None:
@@ -48,7 +50,7 @@ class ErrorHistoryDialog(QDialog):
         self.table.verticalHeader().hide()
         self.table.setSelectionBehavior(QAbstractItemView.SelectionBehavior.SelectRows)
         self.table.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
-        for column, width in enumerate((36, 80, 60, 50, 220, 160, 60)):
+        for column, width in enumerate((36, 80, 60, 50, 200, 120, 60, 44)):
             self.table.setColumnWidth(column, width)
         self.table.cellDoubleClicked.connect(lambda row, _column: self.jump(row))
         buttons = QHBoxLayout()
@@ -63,7 +65,7 @@ class ErrorHistoryDialog(QDialog):
         layout.addWidget(self.header)
         layout.addWidget(self.table)
         layout.addLayout(buttons)
-        self.resize(820, 380)
+        self.resize(900, 380)
         self.refresh()
 
     def link(self):
@@ -82,20 +84,33 @@ class ErrorHistoryDialog(QDialog):
         self.entries = []
         for e in reversed(history):  # newest first (DG 2996)
             offset = e.get("offset", statement_offset(image, e.get("line")))
-            self.entries.append({**e, "age_s": max(0, now - e["time_ms"]) / 1000, "offset": offset})
+            self.entries.append({**e, "age_s": max(0, now - e["time_ms"]) / 1000, "offset": offset,
+                                 "program": self.program_of(e)})
         self.read_at = time.strftime("%Y-%m-%d %H:%M:%S")
         self.header.setText(f"Controller {self.controller_id}, read {self.read_at}: {len(self.entries)} error(s)")
         self.table.setRowCount(len(self.entries))
         for row, e in enumerate(self.entries):
             for column, value in enumerate(self.row_values(row, e)):
                 self.table.setItem(row, column, QTableWidgetItem(value))
+            program = self.table.item(row, COLUMNS.index("Program"))
+            program.setToolTip(e["program"][1] if e["program"] else "Not started from this window: the program "
+                               "is not known")
         return True
+
+    def program_of(self, e: dict) -> tuple[object, str] | None:
+        """(editor, label) of the program that raised the error; the label follows a tab saved since."""
+        noted = self.w.development.error_program(self.controller_id, e["time_ms"], e["number"])
+        if noted is None:
+            return None
+        editor, label = noted
+        return (editor, self.w.program_label(editor)) if editor in self.w.editors() else (None, label)
 
     @staticmethod
     def row_values(row: int, e: dict) -> list[str]:
         return [str(row + 1), str(e["time_ms"]), f"{e['age_s']:.1f}", str(e["number"]), e["text"],
                 e.get("detail", "") or "", "" if e["offset"] is None else str(e["offset"]),
-                "" if not e.get("line") else str(e["line"])]
+                "" if not e.get("line") else str(e["line"]),
+                Path(e["program"][1]).name if e.get("program") else ""]
 
     def write(self, path: Path) -> None:
         """Write (DG 3025): an ASCII text file, tab-separated, that a spreadsheet can import."""
@@ -126,15 +141,32 @@ class ErrorHistoryDialog(QDialog):
         self.refresh()
 
     def jump(self, row: int) -> bool:
-        """Double-click (DG 3021-3023): close the dialog and show the line in the program that ran there."""
-        line = self.entries[row].get("line") if 0 <= row < len(self.entries) else None
+        """Double-click (DG 3021-3023): close the dialog and show the line in the program that raised the error:
+        its tab, else its file opened; never a line of whichever program happens to be in front."""
+        entry = self.entries[row] if 0 <= row < len(self.entries) else {}
+        line, program = entry.get("line"), entry.get("program")
         if not line:
             self.header.setText("This error has no program line")
             return False
+        if program is None:
+            self.header.setText(f"Line {line}: the program was not started from this window, its file is not known")
+            return False
+        editor, label = program
+        if editor is None:
+            path = Path(label)
+            if not path.is_file():
+                self.header.setText(f"Line {line} of {label}: that program is no longer open")
+                return False
+            try:
+                editor = self.w.open_file(path)
+            except OSError as exc:
+                self.header.setText(f"Cannot open {label}: {exc.strerror or exc}")
+                return False
         self.accept()
-        from motiontool.ui.documents import show_location
-
-        return show_location(self.w, "", int(line), 1, self.controller_id)
+        self.w.tabs.setCurrentWidget(editor)
+        editor.goto_line(int(line), col=1)
+        editor.setFocus()
+        return True
 
 
 def show_error_history(w) -> None:

@@ -393,6 +393,7 @@ class MainWindow(QMainWindow):
     def _controller_error(self, time_ms: int, number: int, text: str, line, cid: int) -> None:
         where = f" (line {line})" if line else ""
         self._last_error[cid] = (number, text, line)
+        self.development.note_error(cid, time_ms, number)  # the Error History names this program (I19)
         self.messages.controller(cid, f"{text}{where}")
 
     def _program_event(self, time_ms: int, text: str, cid: int) -> None:
