@@ -6,12 +6,13 @@ the editor, one key every ~120 ms so the popup has time to open as it does for a
 
 from __future__ import annotations
 
-from PySide6.QtCore import Qt
-from PySide6.QtGui import QTextCursor
+from PySide6.QtCore import QEvent, Qt
+from PySide6.QtGui import QKeyEvent, QTextCursor
 from PySide6.QtTest import QTest
 from PySide6.QtWidgets import QApplication
 
 PACE_MS = 120
+LINEFEED = 0x0A  # the key code Qt gives X11's Linefeed keysym (no Qt.Key name)
 
 
 def target(editor):
@@ -80,3 +81,25 @@ def test_an_exact_and_only_match_opens_no_popup(qtbot, editor):
     editor.setPlainText("")
     human_type(qtbot, editor, "ENDWHILE")
     assert not editor.completer.popup().isVisible()
+
+
+def test_a_linefeed_key_ends_the_line_like_return(qtbot, editor):
+    """X11's Linefeed key (what `xdotool type` and some input tools send for a newline) arrives as key 0x0A with
+    text "\\n"; the editor dropped it, so every typed line ran into the next one."""
+    editor.setPlainText("")
+    for line in ("PRINT 1", "ENDIF", "EXIT"):
+        human_type(qtbot, editor, line)
+        for kind in (QEvent.Type.KeyPress, QEvent.Type.KeyRelease):
+            QApplication.sendEvent(target(editor), QKeyEvent(kind, LINEFEED, Qt.KeyboardModifier.NoModifier, "\n"))
+        qtbot.wait(PACE_MS)
+    assert editor.toPlainText() == "PRINT 1\nENDIF\nEXIT\n"
+
+
+def test_a_linefeed_takes_a_chosen_completion_as_return_does(qtbot, editor):
+    editor.setPlainText("")
+    human_type(qtbot, editor, "DELA")
+    qtbot.waitUntil(editor.completer.popup().isVisible)
+    key(qtbot, editor, Qt.Key.Key_Down)
+    QApplication.sendEvent(target(editor), QKeyEvent(QEvent.Type.KeyPress, LINEFEED, Qt.KeyboardModifier.NoModifier,
+                                                     "\n"))
+    assert editor.toPlainText() == "DELAY" and not editor.completer.popup().isVisible()

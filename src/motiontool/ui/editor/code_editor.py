@@ -53,6 +53,7 @@ _EDITING = frozenset({"cut", "paste", "cut_line", "cut_paragraph", "delete_word_
                       "lowercase_selection", "uppercase_selection", "insert_line_above", "toggle_overwrite",
                       "show_replace_dialog", "repeat_dialog", "toggle_recording", "complete"})
 _CHOOSING_KEYS = frozenset({Qt.Key.Key_Up, Qt.Key.Key_Down, Qt.Key.Key_PageUp, Qt.Key.Key_PageDown})
+_LINEFEED = 0x0A  # the key code of X11's Linefeed keysym (Qt names none)
 _MODIFIER_KEYS = frozenset({Qt.Key.Key_Shift, Qt.Key.Key_Control, Qt.Key.Key_Alt, Qt.Key.Key_Meta,
                             Qt.Key.Key_AltGr})
 _DIAG_TOKEN_RE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*|\d[A-Za-z0-9_.]*|\"[^\"]*\"?|\S")
@@ -427,12 +428,18 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
         return super().eventFilter(watched, event)
 
     def keyPressEvent(self, event: QKeyEvent) -> None:  # noqa: N802 (Qt override)
+        if event.key() == _LINEFEED:  # X11 Linefeed (xdotool type, some input tools): Qt drops it, it is a Return
+            event.accept()
+            event = QKeyEvent(QEvent.Type.KeyPress, Qt.Key.Key_Return, event.modifiers(), "\r")
         popup = self._completer.popup()
         key = event.key()
-        if popup.isVisible() and key in (Qt.Key.Key_Enter, Qt.Key.Key_Return) and not (
-                self._completion_chosen and popup.currentIndex().isValid()):
-            popup.hide()  # nothing chosen: Enter ends the line as if the popup were not there
+        if popup.isVisible() and key in (Qt.Key.Key_Enter, Qt.Key.Key_Return):
+            popup.hide()
             event.accept()  # (it came through the popup: accepted, the completer leaves it alone)
+            if self._completion_chosen and popup.currentIndex().isValid():
+                self.insert_completion(popup.currentIndex().data())  # the chosen row, no new line
+                return
+            # nothing chosen: Enter ends the line as if the popup were not there
         elif popup.isVisible() and key == Qt.Key.Key_Tab and not popup.currentIndex().isValid():
             self.insert_completion(self._completer.completionModel().index(0, 0).data())  # Tab takes the first
             popup.hide()
