@@ -11,6 +11,7 @@ clipped to the drive's speed limit. With FFVEL = KDER the velocity terms are a D
 from __future__ import annotations
 
 import math
+from collections import deque
 from dataclasses import dataclass
 
 from motiontool.kernel.errors import ControllerError
@@ -72,6 +73,7 @@ class Axis:
         self._tick = 0
         self._poserr_count = 0
         self.apos = math.floor(self.plant.position)
+        self.raw_history: deque[int] = deque([self.apos], maxlen=21)  # AVEL measures over 20 ms (CR 295-296)
         self.target_window: tuple[int, int, int] = (0, 1, 0)  # TESTTIM, TESTVAL, TESTWIN
         self._window_history: list[int] = []
         self.homing = None                # homing.Homing while HOME / INDEX runs
@@ -90,6 +92,11 @@ class Axis:
     @property
     def raw(self) -> int:
         return math.floor(self.plant.position)
+
+    def measured_velocity(self) -> float:
+        """AVEL in qc/ms: the encoder's counts over the measuring time (20 ms, or _GETVEL's), less right after start."""
+        h = self.raw_history
+        return (h[-1] - h[0]) / (len(h) - 1) if len(h) > 1 else 0.0
 
     @property
     def moving(self) -> bool:
@@ -137,6 +144,7 @@ class Axis:
         plant = self.plant
         plant.step(reference, self.scaling.vmax)
         self.apos = apos = math.floor(plant.position) - self.origin
+        self.raw_history.append(apos + self.origin)
         mode = self.mode
         if mode in _TO_TARGET and pg.done:
             if mode == STOPPING:

@@ -162,7 +162,7 @@ class Controller:
         return self.axis.scaling.uu_to_qc(uu + self.temp_origin)
 
     def avel(self) -> int:
-        return self.axis.scaling.velocity_uu_per_s(self.axis.plant.velocity)
+        return self.axis.scaling.velocity_uu_per_s(self.axis.measured_velocity())
 
     def syncerr(self) -> int:
         """SYNCERR (34-57) in UU: master-derived target − APOS; absolute unless SYNCACCURACY < 0 (DG 9430-9460)."""

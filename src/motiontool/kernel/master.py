@@ -115,6 +115,10 @@ class Master:
             return 0
         return round((h[-1] - h[0]) * 1000 / span)
 
+    def set_velocity_window(self, ms: int) -> None:
+        """_GETVEL: MAVEL is averaged over `ms` from now on (CR 2186-2191); the counts seen so far are kept."""
+        self._history = deque(self._history, maxlen=ms + 1)
+
     # --- one tick -------------------------------------------------------------------------------------------
     def tick(self, time_ms: int) -> None:
         if self.virtual:
