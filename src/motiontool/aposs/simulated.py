@@ -15,6 +15,12 @@ UNSERVED: dict[str, str] = {
     "ENCTGREAD": _NO_ENCODER.format(write="ENCTGWRITE", read="ENCTGREAD"),
     "MENCTGWRITE": _NO_ENCODER.format(write="MENCTGWRITE", read="MENCTGREAD"),
     "MENCTGREAD": _NO_ENCODER.format(write="MENCTGWRITE", read="MENCTGREAD"),
+    "ENCPOSOFFS": "there is no Hiperface encoder on the simulated RS485 line: ENCPOSOFFS returns -1 (timeout) after "
+                  "300 ms and leaves offset unchanged (CR 1178-1190)",
+    "MENCPOSOFFS": "there is no Hiperface encoder on the simulated RS485 line: MENCPOSOFFS returns -1 (timeout) after "
+                   "300 ms and leaves offset unchanged (CR 2197-2209)",
+    "INKEY": "the simulated controller has no LCP keypad: INKEY reads only keys a host presses (kernel/lcp.py "
+             "press_key); without one INKEY (-1) returns -1 and INKEY 0 waits for ever (CR 1701-1738)",
 }
 
 

@@ -506,4 +506,4 @@ def sysvar(ctl, vm, args):
 
 # the synchronisation, marker and CAM commands, the CAN commands and those without a simulated device live in
 # their own modules; importing them registers them
-from motiontool.kernel import axis_readouts, can_commands, sync_commands, unserved  # noqa: E402, F401
+from motiontool.kernel import axis_readouts, can_commands, comopt, lcp, sync_commands, unserved  # noqa: E402, F401, I001
