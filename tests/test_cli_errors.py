@@ -55,11 +55,11 @@ def test_run_refuses_bad_trace_and_record_paths_before_it_starts(tmp_path, capsy
 
 
 @pytest.mark.parametrize(("options", "message"), [
-    (["--set", "KPROP=abc"], "--set KPROP: 'abc' is not a whole number"),
+    (["--set", "KPROP=abc"], "--set KPROP=abc: give a whole number (or 0x hex) from -2147483648 to 4294967295"),
     (["--set", "FOO=5"], "--set FOO=5: error 112: Unknown param. (parameter FOO)"),
     (["--set", "KPROP=99999999"], "--set KPROP=99999999: error 183: Invalid argument (32-60 KPROP: 99999999 is "
                                   "outside 0..100000)"),
-    (["--set", "KPROP=\u0665"], "--set KPROP: '\u0665' is not a whole number"),
+    (["--set", "KPROP=\u0665"], "--set KPROP=\u0665: give a whole number (or 0x hex) from -2147483648 to 4294967295"),
     (["--set", "1:KPROP=5"], "--set 1:KPROP=5: 'ID:' picks a controller, which needs --node (several controllers); "
                              "for the one controller write --set KPROP=5"),
     (["--input", "999=1"], "--input 999=1: no digital input 999 (MCO 305: 1-12, FC 300: 18-33; analog: 53, 54)"),
@@ -68,10 +68,10 @@ def test_run_refuses_bad_trace_and_record_paths_before_it_starts(tmp_path, capsy
     (["--input", "1=1@99999999"], "--input 1=1@99999999: 99999999 ms is after the end of the run (--seconds 60)"),
     (["--input", "2:1=1"], "--input 2:1=1: 'ID:' picks a controller, which needs --node (several controllers); for "
                            "the one controller write --input 3=1@100"),
-    (["--seconds", "inf"], "--seconds inf: give a time in seconds, above 0 and at most 864000"),
-    (["--seconds", "nan"], "--seconds nan: give a time in seconds, above 0 and at most 864000"),
-    (["--seconds", "0"], "--seconds 0: give a time in seconds, above 0 and at most 864000"),
-    (["--interval", "0", "--trace", "t.csv"], "--interval 0: the trace interval is at least 1 ms"),
+    (["--seconds", "inf"], "--seconds inf: give a number above 0 and at most 864000"),
+    (["--seconds", "nan"], "--seconds nan: give a number above 0 and at most 864000"),
+    (["--seconds", "0"], "--seconds 0: give a number above 0 and at most 864000"),
+    (["--interval", "0", "--trace", "t.csv"], "--interval 0: give a whole number from 1 to 3600000"),
 ])
 def test_bad_run_options_are_refused_with_exit_1(tmp_path, capsys, options, message):
     """`--input 999=1`, `0=1`, `1=5` and absurd times were accepted silently; an unknown --set exited 2 (as if the

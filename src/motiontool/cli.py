@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import argparse
+import re
 import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-from motiontool import __version__
+from motiontool import __version__, cliargs
+from motiontool.cliargs import MAX_RUN_SECONDS, NODE_ID, OutputIsInput, Refused, number_option
 
 
 def _cmd_params(args: argparse.Namespace) -> int:
@@ -130,10 +132,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("file", type=Path, metavar="FILE.m|FILE.dpl", nargs="?")
     p.add_argument("--node", action="append", default=[], metavar="ID:PROGRAM.m",
                    help="also run PROGRAM.m on controller ID (1..32) of the same simulated project; repeatable")
-    p.add_argument("--master-node", type=int, metavar="ID",
-                   help="with --node: the node whose virtual master (PULSVEL) drives the master input of all the "
-                        "others (default: the lowest node id)")
-    p.add_argument("--seconds", type=float, default=60.0, help="virtual time to run at most (default 60)")
+    number_option(p, "--master-node", lo=NODE_ID[0], hi=NODE_ID[1], integer=True, metavar="ID",
+                  help="with --node: the node whose virtual master (PULSVEL) drives the master input of all the "
+                       "others (default: the lowest node id)")
+    number_option(p, "--seconds", lo=0, hi=MAX_RUN_SECONDS, above=True, default=60.0,
+                  help="virtual time to run at most (default 60)")
     p.add_argument("--set", action="append", default=[], metavar="[ID:]NAME=VALUE",
                    help="set a parameter before the start, e.g. KPROP=50 or 32-60=50; with ID: only on that node; "
                         "FILE.dpl: a drive parameter MM.PP=VALUE[@MS], at MS ms (1.11=0@2000 stops the drive)")
@@ -146,7 +149,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--signals", default="APOS,CPOS,TRACKERR",
                    help="comma-separated signal names (FILE.dpl: read parameters such as APC_FB_POS or 48, drive "
                         "parameters such as 18.12; default APC_FB_POS,APC_TOT_POS_REF,APC_POS_ERROR)")
-    p.add_argument("--interval", type=int, default=1, metavar="MS", help="trace interval (default 1 ms)")
+    number_option(p, "--interval", lo=1, hi=MAX_TRACE_INTERVAL_MS, integer=True, default=1, metavar="MS",
+                  help="trace interval (default 1 ms)")
     p.add_argument("--record", type=Path, metavar="OUT.csv", help="write every TESTSETP recording as CSV")
     p.add_argument("--realtime", action="store_true", help="pace virtual time at real time")
     _add_link_option(p, "--seconds then counts the controller's own time")
@@ -162,13 +166,45 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+MAX_TRACE_INTERVAL_MS = 3600 * 1000  # an hour between trace rows
+
+
+def _files(args: argparse.Namespace) -> tuple[list[tuple[str, Path]], list[tuple[str, Path]]]:
+    """(outputs, inputs) of a sub-command, each with the option that names it. `cam build -o` is left out: it
+    reads and extends that file by design."""
+    inputs = [(label, getattr(args, attr)) for attr, label in (("file", ""), ("dat", ""),
+                                                               ("config", "--config"))
+              if getattr(args, attr, None) is not None]
+    nodes = getattr(args, "node", None) or []
+    inputs += [("--node", Path(spec.partition(":")[2].strip())) for spec in nodes if spec.partition(":")[2].strip()]
+    outputs = [(option, getattr(args, attr)) for attr, option in (("output", "-o"), ("trace", "--trace"))
+               if getattr(args, attr, None) is not None and not (args.command == "cam" and args.cam_command == "build")]
+    record = getattr(args, "record", None)
+    if record is not None:  # several nodes record into OUT-nodeID.csv (headless._record_path)
+        ids = ([1] if args.file is not None else []) + [int(m.group(1)) for spec in nodes
+                                                         if (m := re.match(r"\s*([0-9]{1,2})\s*:", spec))]
+        outputs += [("--record", record.with_name(f"{record.stem}-node{n}{record.suffix}")) for n in ids] \
+            if nodes else [("--record", record)]
+    return outputs, inputs
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    args = build_parser().parse_args(argv)
+    try:  # a refused number surfaces from parse_args as Refused, its line complete (cliargs.Number)
+        args = build_parser().parse_args(argv)
+    except Refused as exc:
+        print(exc, file=sys.stderr)
+        return 1
     if args.command is None:
         from motiontool.ui.app import run_gui
 
         return run_gui(open_file=args.open_file, screenshot=args.screenshot)
-    return args.func(args)
+    prog = " ".join(["motiontool", args.command, getattr(args, "cam_command", None) or ""]).strip()
+    try:
+        cliargs.refuse_overwriting_inputs(*_files(args))  # before anything is compiled, run or written
+        return args.func(args)
+    except (Refused, OutputIsInput) as exc:
+        print(exc if isinstance(exc, Refused) else f"{prog}: {exc}", file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":

@@ -12,10 +12,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TextIO
 
+from motiontool import cliargs
 from motiontool.aposs.driver import compile_source
 from motiontool.cameditor.transfer import download_config
 from motiontool.cameditor.zbc import ConfigError, read_config
+from motiontool.cliargs import PARAMETER_VALUE, BadNumber, node_id, parse_input, parse_setting, shown, whole
 from motiontool.comms.embedded import EmbeddedLink
+from motiontool.comms.links import LinkSpecError, parse_link_spec
 from motiontool.comms.protocol import LinkError, LinkEvent
 from motiontool.dpl.driver import check_source, is_dpl
 from motiontool.fileio import AtomicFile, atomic_write_text, check_writable, write_error
@@ -24,8 +27,6 @@ from motiontool.fileio import AtomicFile, atomic_write_text, check_writable, wri
 # stopped the program with an error.
 EXIT_OK, EXIT_COMPILE, EXIT_CONTROLLER = 0, 1, 2
 EXIT_REFUSED = EXIT_COMPILE
-_INPUT = re.compile(r"^([0-9]+)=(-?[0-9]+)(?:@([0-9]+))?$")  # ASCII digits: \d would take "٥"
-_WHOLE = re.compile(r"^[-+]?(0[xX][0-9a-fA-F]+|[0-9]+)$")
 _NODE_PREFIX = re.compile(r"^\s*-?[0-9]+\s*:")
 
 
@@ -98,6 +99,16 @@ def check_options(path: Path | None, options: RunOptions, err) -> bool:
     """What can be judged before anything is compiled: the numbers, node prefixes without --node, and whether
     every output file can be written (a long run must not end in a traceback). False after printing why."""
     problems = []
+    try:  # numbers inside compound options, before anything is compiled (cliargs: ASCII digits, bounded)
+        for value in options.inputs:
+            if not _NODE_PREFIX.match(value):
+                parse_input(value)
+            elif options.nodes:  # without --node the prefix itself is the problem (below)
+                parse_input(value.split(":", 1)[1])
+        cliargs.check_signals(options.signals)
+        parse_link_spec(options.link or "sim")  # its address; the options are read when it opens (LinkSpecError)
+    except (BadNumber, LinkSpecError) as exc:
+        problems.append(str(exc))
     if not (math.isfinite(options.seconds) and 0 < options.seconds <= MAX_SECONDS):
         problems.append(f"--seconds {options.seconds:g}: give a time in seconds, above 0 and at most {MAX_SECONDS}")
     if options.trace_interval_ms < 1:
@@ -109,16 +120,17 @@ def check_options(path: Path | None, options: RunOptions, err) -> bool:
                     problems.append(f"{option} {value}: 'ID:' picks a controller, which needs --node (several "
                                     f"controllers); for the one controller write {option} {form}")
     for value in options.inputs:
-        m = _INPUT.match(value.split(":", 1)[1].strip() if options.nodes and ":" in value else value.strip())
-        if m and m.group(3) and int(m.group(3)) > options.seconds * 1000:
-            problems.append(f"--input {value}: {m.group(3)} ms is after the end of the run (--seconds "
-                            f"{options.seconds:g})")
+        with contextlib.suppress(BadNumber):
+            parsed = parse_input(value.split(":", 1)[1] if options.nodes and _NODE_PREFIX.match(value) else value)
+            if parsed and parsed[2] > options.seconds * 1000:
+                problems.append(f"--input {value}: {parsed[2]} ms is after the end of the run (--seconds "
+                                f"{options.seconds:g})")
     for problem in problems:
         print(f"motiontool run: {problem}", file=err)
     return not problems and _outputs_writable(path, options, err)
 
 
-MAX_SECONDS = 10 * 24 * 3600  # ten days of virtual time
+MAX_SECONDS = cliargs.MAX_RUN_SECONDS  # ten days of virtual time
 
 
 def _outputs_writable(path: Path | None, options: RunOptions, err) -> bool:
@@ -155,26 +167,31 @@ def prepare_link(link, config, settings: list[str], inputs: list[str], options, 
             print(f"{options.config}: {exc}", file=err)
             return False
     for setting in settings:
-        key, _, value = setting.partition("=")
-        if not value or not key.strip():
-            print(f"motiontool run: --set needs {form}NAME=VALUE, got '{setting}'", file=err)
+        try:
+            parsed = parse_setting(setting)
+        except BadNumber as exc:
+            print(f"motiontool run: {exc}", file=err)
             return False
-        if not _WHOLE.match(value.strip()):
-            print(f"motiontool run: --set {key}: '{value}' is not a whole number", file=err)
+        if parsed is None:
+            print(f"motiontool run: --set needs {form}NAME=VALUE, got '{shown(setting)}'", file=err)
             return False
         try:  # the controller refuses unknown, read-only and out-of-range parameters
-            link.write_parameter(key.strip(), int(value.strip(), 0))
+            link.write_parameter(*parsed)
         except LinkError as exc:
             print(f"motiontool run: --set {setting}: {exc}", file=err)
             return False
     for spec in inputs:
-        m = _INPUT.match(spec.strip())
-        if not m:
-            print(f"motiontool run: --input needs {form}N=V or {form}N=V@T (ms), got '{spec}'", file=err)
+        try:
+            scheduled = parse_input(spec)
+        except BadNumber as exc:
+            print(f"motiontool run: {exc}", file=err)
+            return False
+        if scheduled is None:
+            print(f"motiontool run: --input needs {form}N=V or {form}N=V@T (ms), got '{shown(spec)}'", file=err)
             return False
         try:  # the controller refuses inputs it does not have
-            link.call("schedule_input", number=int(m.group(1)), value=int(m.group(2)),
-                      time_ms=time_base + int(m.group(3) or 0))
+            number, value, time_ms = scheduled
+            link.call("schedule_input", number=number, value=value, time_ms=time_base + time_ms)
         except LinkError as exc:
             print(f"motiontool run: --input {spec}: {exc}", file=err)
             return False
@@ -252,7 +269,7 @@ def run_program(path: Path | None, options: RunOptions, out: TextIO | None = Non
         link = open_run_link(options.link, options.realtime)
     except LinkError as exc:
         print(f"motiontool run: {exc}", file=err)
-        return EXIT_CONTROLLER
+        return EXIT_REFUSED if isinstance(exc, LinkSpecError) else EXIT_CONTROLLER
     state = {"error": False}
     trace: TraceWriter | None = None
     output = PrintOutput(out)
@@ -347,7 +364,7 @@ def run_until_stopped(links: list, options: RunOptions, time_base: int, output: 
 # --- DPL programs on the simulated APC (docs/dpl.md) -----------------------------------------------------------------
 MCO_SIGNALS = ["APOS", "CPOS", "TRACKERR"]
 DPL_SIGNALS = ["APC_FB_POS", "APC_TOT_POS_REF", "APC_POS_ERROR"]
-_DPL_SET = re.compile(r"^#?(\d{1,2})\.(\d{1,2})=(-?(?:0[xX][0-9A-Fa-f]+|\d+))(?:@(\d+))?$")
+_DPL_SET = re.compile(r"^#?([0-9]{1,2})\.([0-9]{1,2})=([^@]+)(?:@(.+))?$")  # numbers: cliargs.whole
 
 
 def run_dpl(path: Path | None, options: RunOptions, err: TextIO) -> int:
@@ -388,7 +405,13 @@ def run_dpl(path: Path | None, options: RunOptions, err: TextIO) -> int:
                 print(f"motiontool run: --set needs {'[ID:]' if several else ''}MM.PP=VALUE or MM.PP=VALUE@MS for "
                       f"a DPL program, got '{setting}'", file=err)
                 return EXIT_COMPILE
-            writes.append((int(m.group(4) or 0), n, f"{int(m.group(1))}.{int(m.group(2)):02d}", int(m.group(3), 0)))
+            try:
+                value = whole(m.group(3), f"--set {m.group(1)}.{m.group(2)}", *PARAMETER_VALUE, hex=True, sep="=")
+                at = whole(m.group(4) or "0", f"--set {shown(setting)}: time", 0, MAX_SECONDS * 1000)
+            except BadNumber as exc:
+                print(f"motiontool run: {exc}", file=err)
+                return EXIT_COMPILE
+            writes.append((at, n, f"{int(m.group(1))}.{int(m.group(2)):02d}", value))
     writes.sort(key=lambda w: w[0])
     signals = DPL_SIGNALS if options.signals == MCO_SIGNALS else options.signals
     traces: dict[int, dict[int, list]] = {n: {} for n in nodes}
@@ -429,11 +452,14 @@ def run_dpl(path: Path | None, options: RunOptions, err: TextIO) -> int:
             header = ["time_ms", *(f"{n}:{s}" if several else s for n in nodes for s in signals)]
             times = sorted(set().union(*(traces[n] for n in nodes)))
             empty = [""] * len(signals)
-            _write_csv(options.trace, header, [[t, *(v for n in nodes for v in traces[n].get(t, empty))]
-                                               for t in times])
+            _write_output(options.trace, header, [[t, *(v for n in nodes for v in traces[n].get(t, empty))]
+                                                  for t in times])
     except LinkError as exc:
         print(f"motiontool run: {exc}", file=err)
         return EXIT_CONTROLLER
+    except _OutputError as exc:  # a full disk, a file-size limit: the old file stays
+        print(f"motiontool run: {exc}", file=err)
+        return EXIT_REFUSED
     finally:
         bus.close()
     return EXIT_CONTROLLER if failed else EXIT_OK
@@ -485,8 +511,8 @@ def _write_output(path: Path, header: list[str], rows: list[list]) -> None:
 
 
 # --- several controllers (--node): a multi-axis project on one master signal (comms/bus.py) -------------------
-_NODE = re.compile(r"^\s*(-?\d+)\s*:(.+)$")
-_FOR_NODE = re.compile(r"^\s*(-?\d+)\s*:(.*)$")
+_NODE = re.compile(r"^\s*([^:]*?)\s*:(.+)$")
+_FOR_NODE = re.compile(r"^\s*(-?[0-9]{1,9})\s*:(.*)$")  # ASCII digits: \d would take "٢" as node 2
 
 
 class _Usage(Exception):
@@ -499,12 +525,13 @@ def _node_programs(path: Path | None, specs: list[str]) -> dict[int, Path]:
     for spec in specs:
         m = _NODE.match(spec)
         if not m:
-            raise _Usage(f"motiontool run: --node needs ID:PROGRAM.m, got '{spec}'")
-        programs.append((int(m.group(1)), Path(m.group(2).strip())))
+            raise _Usage(f"motiontool run: --node needs ID:PROGRAM.m, got '{shown(spec)}'")
+        try:  # the bus says the same; here before anything is compiled
+            programs.append((node_id(m.group(1)), Path(m.group(2).strip())))
+        except BadNumber as exc:
+            raise _Usage(f"motiontool run: {exc}") from None
     nodes = [n for n, _ in programs]
-    for n in nodes:  # the bus says the same; here before anything is compiled
-        if not 1 <= n <= 32:
-            raise _Usage(f"motiontool run: --node {n}: node id {n} is outside 1..32")
+    for n in nodes:
         if nodes.count(n) > 1:
             raise _Usage(f"motiontool run: node id {n} is given twice"
                          + (" (FILE.m runs on node 1)" if path is not None and n == 1 else ""))
@@ -551,7 +578,7 @@ def run_nodes(path: Path | None, options: RunOptions, out: TextIO | None = None,
         return EXIT_COMPILE
     except LinkError as exc:
         print(f"motiontool run: {exc}", file=err)
-        return EXIT_CONTROLLER
+        return EXIT_REFUSED if isinstance(exc, LinkSpecError) else EXIT_CONTROLLER
     failed: set[int] = set()
     trace: TraceWriter | None = None
     output = PrintOutput(out)
@@ -637,13 +664,14 @@ def _node_links(nodes: list[int], options: RunOptions):
     return links, lambda: [link.close() for link in links.values()]
 
 
-def params_on_link(spec: str | None, gets: list[str], sets: list[str], rows, out: TextIO = sys.stdout,
-                   err: TextIO = sys.stderr) -> int:
+def params_on_link(spec: str | None, gets: list[str], sets: list[str], rows, out: TextIO | None = None,
+                   err: TextIO | None = None) -> int:
     """`motiontool params --link SPEC [--set KEY=VALUE]… [--get KEY]…`: writes first (each read back), then reads;
     without --get/--set every parameter of `rows` is read. One line per parameter: `32-60 KPROP 50` (the raw
     value the link carries). Exit 0, or 1 after the first refusal (stderr names the parameter)."""
     from motiontool.paramdb import ParameterError, database
 
+    out, err = out or sys.stdout, err or sys.stderr  # looked up now: a caller may have redirected them
     db = database()
     try:
         link = open_run_link(spec)
@@ -653,13 +681,15 @@ def params_on_link(spec: str | None, gets: list[str], sets: list[str], rows, out
     try:
         for setting in sets:
             key, _, value = setting.partition("=")
+            if not value:
+                raise LinkError(f"--set needs KEY=VALUE with a whole number, got '{shown(setting)}'")
             try:
                 p = db.get(key.strip())
-                number = int(value, 0)
+                number = whole(value, f"--set {key.strip()}", *PARAMETER_VALUE, hex=True, sep="=")
             except ParameterError as exc:
                 raise LinkError(f"--set {setting}: {exc}") from None
-            except ValueError:
-                raise LinkError(f"--set needs KEY=VALUE with a whole number, got '{setting}'") from None
+            except BadNumber as exc:
+                raise LinkError(str(exc)) from None
             link.write_parameter(p.number, number)
             print(f"{p.label} {link.read_parameter(p.number)}", file=out)
         for key in gets:

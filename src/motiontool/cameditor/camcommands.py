@@ -13,25 +13,28 @@ from motiontool.camcurve.layout import CurveArrayError, element_count
 from motiontool.camcurve.model import Curve, CurveError, CurveType, FixPoint, StartStopPair, default_pairs
 from motiontool.cameditor.dat import DatError, read_dat, write_dat
 from motiontool.cameditor.zbc import ConfigError, ConfigFile, read_config, write_config
+from motiontool.cliargs import BadNumber, real, whole
+from motiontool.fileio import check_writable, write_error
 
 
 class _InputError(ValueError):
     pass
 
 
+LONG = (-(1 << 31), (1 << 31) - 1)  # a curve's positions end up in controller longs
+MAX_INTERVALS = 1_000_000  # far more than an array memory of some 12 MiB holds: never a runaway allocation
+
+
 def _number(text: str, what: str) -> int | float:
-    text = text.strip()
+    """A whole or decimal number in long range by cliargs (ASCII digits, finite): "٥" and "1e999" are refused."""
     try:
-        return int(text)
-    except ValueError:
+        return whole(text, what, *LONG)
+    except BadNumber:
         pass
     try:
-        value = float(text)
-    except ValueError:
-        raise _InputError(f"{what}: {text!r} is not a number") from None
-    if value != value or value in (float("inf"), float("-inf")):
-        raise _InputError(f"{what}: {text!r} is not a finite number")
-    return value
+        return real(text, what, *LONG)
+    except BadNumber as exc:
+        raise _InputError(str(exc)) from None
 
 
 def _numbers(text: str, count: int, what: str, example: str) -> list[int | float]:
@@ -51,7 +54,7 @@ def _point(text: str) -> FixPoint:
 
 def _curve_type(text: str) -> CurveType:
     key = text.strip().upper()
-    if key.isdigit() and int(key) in CurveType._value2member_map_:
+    if key in {str(v) for v in CurveType._value2member_map_}:  # not isdigit(): "٢" is no curve type
         return CurveType(int(key))
     if key in CurveType.__members__:
         return CurveType[key]
@@ -82,10 +85,11 @@ def build_curve(args: argparse.Namespace) -> Curve:
         value = getattr(args, option)
         if value is not None:
             kw[key] = _number(value, "--" + option.replace("_", "-"))
-    intervals = args.intervals.strip()
-    if not intervals.lstrip("+-").isdigit():
-        raise _InputError(f"--intervals: {args.intervals!r} is not an integer")
-    return Curve(args.name, master_length, points, interpolation=not args.no_interpolation, intervals=int(intervals),
+    try:
+        intervals = whole(args.intervals, "--intervals", 1, MAX_INTERVALS)
+    except BadNumber as exc:
+        raise _InputError(str(exc)) from None
+    return Curve(args.name, master_length, points, interpolation=not args.no_interpolation, intervals=intervals,
                  curve_type=_curve_type(args.curve_type), start_stop_pairs=pairs, **kw)  # type: ignore[arg-type]
 
 
@@ -99,8 +103,21 @@ def cmd_build(args: argparse.Namespace) -> int:
     return _add_curve(prog, args.output, curve)
 
 
+def _writable(prog: str, out: Path) -> bool:
+    """Whether ``out`` can be written (fileio.check_writable: a name beyond NAME_MAX, a missing folder…); else
+    False after the one line ``cannot write OUT: reason``."""
+    try:
+        check_writable(out)
+    except OSError as exc:
+        print(f"{prog}: error: {write_error(out, exc)}", file=sys.stderr)
+        return False
+    return True
+
+
 def _add_curve(prog: str, out: Path, curve: Curve) -> int:
     """Add ``curve`` to the .zbc file ``out`` (created when missing); 1 after printing the error."""
+    if not _writable(prog, out):
+        return 1
     try:
         config = read_config(out) if out.exists() else ConfigFile()
     except ConfigError as exc:
@@ -112,8 +129,8 @@ def _add_curve(prog: str, out: Path, curve: Curve) -> int:
     except (CurveError, ConfigError) as exc:
         print(f"{prog}: error: {exc}", file=sys.stderr)
         return 1
-    except OSError as exc:
-        print(f"{prog}: error: cannot write {out}: {exc.strerror or exc}", file=sys.stderr)
+    except OSError as exc:  # a full disk, a file-size limit: the old file stays (fileio's atomic save)
+        print(f"{prog}: error: {write_error(out, exc)}", file=sys.stderr)
         return 1
     return 0
 
@@ -134,6 +151,8 @@ def cmd_info(args: argparse.Namespace) -> int:
 
 def cmd_export(args: argparse.Namespace) -> int:
     prog = "motiontool cam export"
+    if not _writable(prog, args.output):
+        return 1
     try:
         config = read_config(args.file)
     except ConfigError as exc:
@@ -146,7 +165,7 @@ def cmd_export(args: argparse.Namespace) -> int:
     try:
         write_dat(args.output, curve)
     except OSError as exc:
-        print(f"{prog}: error: cannot write {args.output}: {exc.strerror or exc}", file=sys.stderr)
+        print(f"{prog}: error: {write_error(args.output, exc)}", file=sys.stderr)
         return 1
     return 0
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from motiontool.comms.apc_service import ApcService
 from motiontool.comms.embedded import EmbeddedLink
-from motiontool.comms.links import LinkSpec, register_link_scheme
+from motiontool.comms.links import MAX_REALTIME, LinkSpec, register_link_scheme
 from motiontool.comms.protocol import LinkError, LinkEvent
 from motiontool.dpl.host import DplHost
 
@@ -56,7 +56,7 @@ def _open_apcsim(spec: LinkSpec) -> EmbeddedLink:
     spec.check_options({"realtime"})
     if spec.target or spec.node not in (None, 1):
         raise LinkError(f"link '{spec.text}': the APC simulator is one controller (apcsim or apcsim#1)")
-    return dpl_link(realtime_factor=spec.option("realtime", None, float))
+    return dpl_link(realtime_factor=spec.option("realtime", None, float, 0, MAX_REALTIME) or None)  # 0: virtual
 
 
 register_link_scheme("apcsim", _open_apcsim, "apcsim[,realtime=F]", "the embedded simulated APC that runs DPL programs",

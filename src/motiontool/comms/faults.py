@@ -91,8 +91,7 @@ class FaultyPort:
 
 def faults_from_options(spec) -> Faults:
     """The fault options of a link spec (drop, corrupt, duplicate, delay in %; seed)."""
-    return Faults(spec.option("drop", 0.0, float), spec.option("corrupt", 0.0, float),
-                  spec.option("duplicate", 0.0, float), spec.option("delay", 0.0, float),
+    return Faults(*(spec.option(name, 0.0, float, 0, 100) for name in ("drop", "corrupt", "duplicate", "delay")),
                   seed=spec.option("seed", None, int))
 
 

@@ -19,11 +19,19 @@ import re
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
+from motiontool.cliargs import BadNumber, real, shown, whole
 from motiontool.comms.link import Link
 from motiontool.comms.protocol import LinkError
 
 _OPTION = re.compile(r",([A-Za-z_][A-Za-z0-9_-]*)=([^,#]*)$")
 _NODE = re.compile(r"#([^#,]*)$")
+ADDRESS = (0, 255)  # a bus address or node id; each scheme checks its own range (FC 1..126, CANopen 1..127)
+INT_OPTION = (-(1 << 31), (1 << 31) - 1)  # the default bounds of a whole-number option
+REAL_OPTION = (-1e9, 1e9)                  # … and of a decimal one (always finite)
+
+
+class LinkSpecError(LinkError):
+    """A malformed link spec or option (a refused command line, exit 1), not a controller that cannot be reached."""
 
 
 @dataclass(frozen=True)
@@ -34,19 +42,29 @@ class LinkSpec:
     options: dict[str, str] = field(default_factory=dict)
     text: str = ""
 
-    def option(self, name: str, default, convert: Callable = str):
-        """An option converted by `convert`, or `default`; a bad value is a LinkError naming option and spec."""
+    def option(self, name: str, default, convert: Callable = str, lo: float | None = None, hi: float | None = None):
+        """An option converted by `convert`, or `default`; a bad value is a LinkError naming option and spec. Numbers
+        (`convert` int or float) are read by cliargs: ASCII digits, finite, within lo..hi (default: wide bounds)."""
         if name not in self.options:
             return default
+        what = f"link '{shown(self.text)}': option {name}"
         try:
+            if convert is int:
+                return whole(self.options[name], what, int(INT_OPTION[0] if lo is None else lo),
+                             int(INT_OPTION[1] if hi is None else hi), sep="=")
+            if convert is float:
+                return real(self.options[name], what, REAL_OPTION[0] if lo is None else lo,
+                            REAL_OPTION[1] if hi is None else hi, sep="=")
             return convert(self.options[name])
+        except BadNumber as exc:
+            raise LinkSpecError(str(exc)) from None
         except ValueError:
-            raise LinkError(f"link '{self.text}': option {name}={self.options[name]!r} is not valid") from None
+            raise LinkSpecError(f"link '{self.text}': option {name}={self.options[name]!r} is not valid") from None
 
     def check_options(self, known: set[str]) -> None:
         unknown = sorted(set(self.options) - known)
         if unknown:
-            raise LinkError(f"link '{self.text}': unknown option {unknown[0]!r} "
+            raise LinkSpecError(f"link '{self.text}': unknown option {unknown[0]!r} "
                             f"(known: {', '.join(sorted(known)) or 'none'})")
 
 
@@ -54,22 +72,22 @@ def parse_link_spec(text: str) -> LinkSpec:
     """`SCHEME[:TARGET][#NODE][,KEY=VALUE]...` → LinkSpec; LinkError naming the spec when it is malformed."""
     rest = text.strip()
     if not rest:
-        raise LinkError("empty link: give sim, fc:URL[#ADDRESS] or another registered scheme")
+        raise LinkSpecError("empty link: give sim, fc:URL[#ADDRESS] or another registered scheme")
     options: dict[str, str] = {}
     while (m := _OPTION.search(rest)) is not None:
         options[m.group(1).lower()] = m.group(2)
         rest = rest[:m.start()]
     node = None
     if (m := _NODE.search(rest)) is not None:
-        value = m.group(1).strip()
-        if not value.isdigit():
-            raise LinkError(f"link '{text}': the address after '#' must be a whole number, got {value!r}")
-        node = int(value)
+        try:
+            node = whole(m.group(1), f"link '{shown(text)}': the address", *ADDRESS, sep=" #")
+        except BadNumber as exc:
+            raise LinkSpecError(str(exc)) from None
         rest = rest[:m.start()]
     scheme, _, target = rest.partition(":")
     scheme = scheme.strip().lower()
     if not re.fullmatch(r"[a-z][a-z0-9_-]*", scheme):
-        raise LinkError(f"link '{text}': '{scheme}' is not a link scheme (try {', '.join(link_schemes())})")
+        raise LinkSpecError(f"link '{text}': '{scheme}' is not a link scheme (try {', '.join(link_schemes())})")
     return LinkSpec(scheme, target.strip(), node, dict(reversed(options.items())), text.strip())
 
 
@@ -125,14 +143,17 @@ def scan_controllers(text: str | LinkSpec, ids: Iterable[int]) -> list[int]:
 
 
 # --- the built-in schemes ---------------------------------------------------------------------------------------
+MAX_REALTIME = 1000.0  # realtime=FACTOR: virtual time at most this much faster than real time
+
+
 def _open_sim(spec: LinkSpec) -> Link:
     """`sim[,realtime=1]`: a simulated controller in this process (comms/embedded.py)."""
     from motiontool.comms.embedded import EmbeddedLink
 
     spec.check_options({"realtime"})
     if spec.target:
-        raise LinkError(f"link '{spec.text}': sim takes no target")
-    realtime = spec.option("realtime", 0.0, float)
+        raise LinkSpecError(f"link '{spec.text}': sim takes no target")
+    realtime = spec.option("realtime", 0.0, float, 0, MAX_REALTIME)
     return EmbeddedLink(realtime_factor=realtime or None)
 
 

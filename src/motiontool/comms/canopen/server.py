@@ -22,6 +22,7 @@ import canopen
 from motiontool.comms.canopen import eds
 from motiontool.comms.canopen.node import ControllerNode
 from motiontool.comms.canopen.slcan import SlcanServer, open_local_bus
+from motiontool.comms.drive.listeners import listen_port
 from motiontool.comms.protocol import LinkError
 from motiontool.kernel.canbus import CanFrame
 
@@ -102,9 +103,10 @@ class SlcanListener:
         host, _, port = channel.removeprefix("socket://").rpartition(":")
         if host not in ("127.0.0.1", "localhost") and not spec.option("any_host", False, lambda v: v == "1"):
             raise LinkError(f"--listen '{spec.text}': listen on 127.0.0.1 (add ,any_host=1 to listen on {host})")
+        number = listen_port(spec, port or "0")  # before the hub bus exists: a refusal leaves nothing open
         name = f"motiontool-drive-{next(_channels)}"
         try:
-            self.server = SlcanServer(name, host, int(port or 0), interface="hub")
+            self.server = SlcanServer(name, host, number, interface="hub")
         except (OSError, ValueError) as exc:
             raise LinkError(f"--listen '{spec.text}': {exc}") from None
         self.canopen = CanopenDrive(drive, name, interface="hub")

@@ -16,6 +16,7 @@ Listens on 127.0.0.1 only unless told otherwise.
 from __future__ import annotations
 
 import contextlib
+import re
 import select
 import socket
 import threading
@@ -23,6 +24,8 @@ import time
 from collections import deque
 
 import can
+
+from motiontool.cliargs import shown
 
 OK, ERROR = b"\r", b"\a"
 VERSION, SERIAL = b"V1013\r", b"NMT15\r"
@@ -265,8 +268,9 @@ class SlcanSocketBus(can.BusABC):
     def __init__(self, channel: str, timeout: float = 5.0, **kwargs):
         address = channel.removeprefix("socket://")
         host, _, port = address.rpartition(":")
-        if not host or not port.isdigit():
-            raise can.CanInitializationError(f"slcan channel {channel!r}: give socket://HOST:PORT")
+        if not host or not re.fullmatch(r"[0-9]{1,5}", port) or int(port) > 65535:  # ASCII: isdigit() takes "٥"
+            raise can.CanInitializationError(f"slcan channel {shown(channel)!r}: give socket://HOST:PORT "
+                                             "(PORT 0-65535)")
         try:
             self.sock = socket.create_connection((host, int(port)), timeout=timeout)
         except OSError as exc:

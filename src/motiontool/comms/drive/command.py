@@ -17,11 +17,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TextIO
 
+from motiontool.cliargs import NODE_ID, node_id, number_option
 from motiontool.comms.drive.listeners import open_listener
 from motiontool.comms.drive.simulator import CLOCKS, REACTIONS, VirtualDrive
 from motiontool.comms.protocol import LinkError
 
-_NODE = re.compile(r"^\s*(\d+)\s*(?::(.+))?$")
+_NODE = re.compile(r"^\s*([^:]*?)\s*(?::(.+))?$")  # the id is read by cliargs.node_id (ASCII digits, 1..32)
+MAX_SPEED = 1000.0          # --speed: a realtime factor beyond this is no longer real time
+MAX_TIMEOUT_S = 24 * 3600.0  # --timeout
 
 
 @dataclass
@@ -52,14 +55,15 @@ def add_parser(sub) -> None:
     p.add_argument("--node", action="append", default=[], metavar="ID[:PROGRAM.m]",
                    help="a controller with bus address/node id ID (1..32), optionally running PROGRAM.m (saved as "
                         "program 0 and started); repeatable; default: one controller, ID 1")
-    p.add_argument("--master-node", type=int, metavar="ID",
-                   help="the node whose virtual master (PULSVEL) drives the master input of all the others")
+    number_option(p, "--master-node", lo=NODE_ID[0], hi=NODE_ID[1], integer=True, metavar="ID",
+                  help="the node whose virtual master (PULSVEL) drives the master input of all the others")
     p.add_argument("--clock", choices=CLOCKS, default="realtime",
                    help="realtime (default): time runs by itself; virtual: it moves only when a master sends "
                         "advance (reproducible runs, as the embedded simulator)")
-    p.add_argument("--speed", type=float, default=1.0, help="real-time factor of the realtime clock (default 1)")
-    p.add_argument("--timeout", type=float, metavar="S", dest="timeout_s",
-                   help="link timeout: react when a master that talked to a node is silent this long")
+    number_option(p, "--speed", lo=0, hi=MAX_SPEED, above=True, default=1.0,
+                  help="real-time factor of the realtime clock (default 1)")
+    number_option(p, "--timeout", lo=0, hi=MAX_TIMEOUT_S, above=True, metavar="S", dest="timeout_s",
+                  help="link timeout: react when a master that talked to a node is silent this long")
     p.add_argument("--timeout-reaction", choices=REACTIONS, default="stop",
                    help="what a running program does on a link timeout (default stop)")
     p.add_argument("--include", "-I", action="append", type=Path, default=[], metavar="DIR")
@@ -77,7 +81,7 @@ def _node_specs(specs: list[str]) -> dict[int, Path | None]:
         m = _NODE.match(spec)
         if not m:
             raise ValueError(f"--node needs ID or ID:PROGRAM.m, got '{spec}'")
-        n = int(m.group(1))
+        n = node_id(m.group(1))
         if n in nodes:
             raise ValueError(f"--node {n} is given twice")
         nodes[n] = Path(m.group(2).strip()) if m.group(2) else None
@@ -131,7 +135,8 @@ def _watch_parent(stop: threading.Event) -> None:
     threading.Thread(target=parent_gone, name="drive-parent", daemon=True).start()
 
 
-def run_drive(options: DriveOptions, out: TextIO = sys.stdout, err: TextIO = sys.stderr) -> int:
+def run_drive(options: DriveOptions, out: TextIO | None = None, err: TextIO | None = None) -> int:
+    out, err = out or sys.stdout, err or sys.stderr  # looked up now: a caller may have redirected them
     drive = build_drive(options, err)
     if drive is None:
         return 1

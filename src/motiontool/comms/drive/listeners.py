@@ -13,6 +13,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Protocol
 
+from motiontool.cliargs import PORT, BadNumber, shown, whole
 from motiontool.comms.links import LinkSpec, import_scheme_modules, parse_link_spec
 from motiontool.comms.protocol import LinkError
 
@@ -48,6 +49,14 @@ def _load() -> None:
 def listener_schemes() -> list[ListenerScheme]:
     _load()
     return [s for _, s in sorted(_SCHEMES.items())]
+
+
+def listen_port(spec: LinkSpec, text: str) -> int:
+    """The TCP port of a listener spec (0: any free port); LinkError naming the spec and the range."""
+    try:
+        return whole(text, f"--listen '{shown(spec.text)}': port", *PORT)
+    except BadNumber as exc:
+        raise LinkError(str(exc)) from None
 
 
 def open_listener(text: str, drive) -> Listener:

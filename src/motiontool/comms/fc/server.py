@@ -21,7 +21,9 @@ import threading
 import time
 from collections.abc import Callable
 
+from motiontool.cliargs import shown
 from motiontool.comms.chunks import SlaveChannel
+from motiontool.comms.drive.listeners import listen_port
 from motiontool.comms.fc.extension import MAX_CHUNK, frame_telegram, is_frame, telegram_frame
 from motiontool.comms.fc.telegram import (
     AK_NONE,
@@ -246,10 +248,10 @@ def open_fc_listener(spec: LinkSpec, drive):
         return FcPtyListener(drive, baud)
     if spec.target.startswith("socket://"):
         host, _, port = spec.target[len("socket://"):].rpartition(":")
-        if not host or not port.isdigit():
-            raise LinkError(f"--listen '{spec.text}': give socket://HOST:PORT (PORT 0 picks a free port)")
+        if not host or not port:
+            raise LinkError(f"--listen '{shown(spec.text)}': give socket://HOST:PORT (PORT 0 picks a free port)")
         try:
-            return FcSocketListener(drive, host.strip("[]"), int(port), baud)
+            return FcSocketListener(drive, host.strip("[]"), listen_port(spec, port), baud)
         except OSError as exc:
             raise LinkError(f"--listen '{spec.text}': {exc}") from None
     raise LinkError(f"--listen '{spec.text}': fc listens on socket://HOST:PORT or on pty")
