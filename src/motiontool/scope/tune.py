@@ -97,6 +97,11 @@ class Tune:
     def read_parameters(self) -> dict[str, int]:
         return {name: int(self.link.read_parameter(name)) for name in PID_PARAMETERS}
 
+    @property
+    def run_parameters(self) -> dict[str, int]:
+        """The gains read at the start of the last run (after the panel's writes)."""
+        return dict(self._parameters)
+
     def write_parameters(self, values: dict[str, int]) -> None:
         for name, value in values.items():
             self.link.write_parameter(name, int(value))

@@ -4,6 +4,7 @@ form of the SDO/Variable/Derived tabs, DG 5424-5674), the Tune panel (ide-spec 6
 
 from __future__ import annotations
 
+from PySide6.QtCore import Signal
 from PySide6.QtGui import QColor
 from PySide6.QtWidgets import (
     QCheckBox,
@@ -129,6 +130,8 @@ class AddCurveDialog(QDialog):
 class TunePanel(QWidget):
     """The test move, the 32-6* PID parameters with "apply and run", and the results of every run."""
 
+    read_done = Signal(object)   # (generation, {name: value}) from a worker thread's read (run_control)
+
     def __init__(self, config: TestConfiguration, parent=None):
         super().__init__(parent)
         layout = QVBoxLayout(self)
@@ -154,6 +157,9 @@ class TunePanel(QWidget):
                          ("Settle time", self.settle), ("Settling band ±", self.band)):
             form.addRow(label, w)
         self.pid: dict[str, QSpinBox] = {}
+        self.as_read: dict[str, int] = {}   # the controller's values when last read, by name
+        self.generation = 0                 # counts the writes: a read asked before one is dropped
+        self.read_done.connect(self._read_arrived)
         for name in PID_PARAMETERS:
             box = QSpinBox()
             box.setRange(0, 100_000)
@@ -176,12 +182,30 @@ class TunePanel(QWidget):
                                  self.settle.value(), self.band.value())
 
     def set_parameters(self, values: dict[str, int]) -> None:
+        """The controller's values as just read. A field the user has edited keeps the edit; the others show the
+        new value. What was read is remembered, so "Apply" writes only the edits: the panel once wrote back the
+        gains it read when it opened, undoing a KPROP set meanwhile in Parameters ▸ Axis (issue 23)."""
         for name, value in values.items():
-            if name in self.pid:
-                self.pid[name].setValue(int(value))
+            box = self.pid.get(name)
+            if box is None:
+                continue
+            if name not in self.as_read or box.value() == self.as_read[name]:
+                box.setValue(int(value))
+            self.as_read[name] = int(value)
 
     def parameters(self) -> dict[str, int]:
         return {name: box.value() for name, box in self.pid.items()}
+
+    def _read_arrived(self, answer) -> None:
+        generation, values = answer
+        if generation == self.generation:   # else a write came after this read was asked: it is stale
+            self.set_parameters(values)
+
+    def changed(self) -> dict[str, int]:
+        """The fields the user changed since the values were read (a field never read is not written: it shows
+        no controller value, only the box's 0)."""
+        return {name: box.value() for name, box in self.pid.items()
+                if name in self.as_read and box.value() != self.as_read[name]}
 
     def add_result(self, r: TuneResult) -> None:
         row = self.results.rowCount()

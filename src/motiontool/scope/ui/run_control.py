@@ -5,13 +5,14 @@ widgets, timers and acquisition objects these methods drive."""
 from __future__ import annotations
 
 import contextlib
+import threading
 
 from PySide6.QtWidgets import QMessageBox, QProgressDialog
 
 from motiontool.comms.protocol import LinkError
 from motiontool.scope import derived
 from motiontool.scope.acquisition import FreeRun, SingleShot
-from motiontool.scope.tune import Tune
+from motiontool.scope.tune import PID_PARAMETERS, Tune
 from motiontool.scope.ui.dialogs import TriggerDialog
 
 LIST_EVERY = 4          # list values and title every 4th chart refresh while recording
@@ -176,8 +177,12 @@ class RunControl:
             self.tune = Tune(self.scope, self.link)
         self.tune.link = self.link
         self.tune.config = self.tune_panel.config()
+        panel = self.tune_panel
         try:
-            self.tune.write_parameters(self.tune_panel.parameters())
+            if not panel.as_read:  # never read (no link when Tune was chosen): read before anything is written
+                panel.set_parameters(self.tune.read_parameters())
+            panel.generation += 1  # a re-read still on its way predates this write
+            self.tune.write_parameters(panel.changed())  # only the user's edits: the rest may be newer there
             if not self.tune_panel.overlay.isChecked():
                 for g in [g for g in self.scope.groups if g.name.startswith("Tune run")]:
                     for c in self.scope.members(g.name):
@@ -186,9 +191,28 @@ class RunControl:
         except (ValueError, LinkError) as exc:
             self.tune_panel.state.setText(str(exc))
             return
+        panel.set_parameters(self.tune.run_parameters)  # begin() read what this run uses: show it
         self.tune_panel.run.setEnabled(False)
         self.tune_panel.state.setText("Test move running …")
         self.tune_timer.start()
+
+    def refresh_tune(self) -> None:
+        """Re-read the gains when the Tune window comes to the front (Parameters ▸ Axis or a program may have
+        changed them meanwhile), on a worker thread so the window never waits for the line."""
+        link, panel = self.link, self.tune_panel
+        if link is None or self.scope.variant != "tune" or self.tune_timer.isActive():
+            return
+        generation = panel.generation
+
+        def read() -> None:
+            try:
+                values = {name: int(link.read_parameter(name)) for name in PID_PARAMETERS}
+            except (LinkError, ValueError):
+                return  # the next activation or run reads again; a lost link is said by the window
+            with contextlib.suppress(RuntimeError):  # the window was closed meanwhile
+                panel.read_done.emit((generation, values))
+
+        threading.Thread(target=read, name="tune-read", daemon=True).start()
 
     def _tune_tick(self) -> None:
         try:

@@ -11,7 +11,7 @@ from __future__ import annotations
 import contextlib
 from pathlib import Path
 
-from PySide6.QtCore import QObject, Qt, QTimer, Signal
+from PySide6.QtCore import QEvent, QObject, Qt, QTimer, Signal
 from PySide6.QtGui import QAction, QActionGroup, QKeySequence
 from PySide6.QtWidgets import (
     QDockWidget,
@@ -116,6 +116,11 @@ class ScopeWindow(RunControl, QMainWindow):
         if link_or_bridge is not None:
             self.set_link(link_or_bridge)
         self.set_variant(self.scope.variant, initial=True)
+
+    def changeEvent(self, event) -> None:  # noqa: N802 - Qt override
+        super().changeEvent(event)
+        if event.type() == QEvent.Type.ActivationChange and self.isActiveWindow():
+            self.refresh_tune()  # back from another window: the gains there may have changed
 
     # --- the link ------------------------------------------------------------------------------------------
     @property
