@@ -23,7 +23,7 @@ NODE_ID = (1, 32)                  # controllers of one simulated project (comms
 _WHOLE = re.compile(rf"[-+]?[0-9]{{1,{MAX_DIGITS}}}")
 _HEX = re.compile(rf"[-+]?0[xX][0-9a-fA-F]{{1,{MAX_DIGITS}}}")
 _REAL = re.compile(r"[-+]?([0-9]{1,30}\.?[0-9]{0,30}|\.[0-9]{1,30})([eE][-+]?[0-9]{1,3})?")
-_SHOWN = 24  # characters of a refused text repeated in the message (a 5000-digit number stays one short line)
+_SHOWN = 64  # characters of a refused text repeated in the message (a 5000-digit number stays one short line)
 
 
 class BadNumber(ValueError):
