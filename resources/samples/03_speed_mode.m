@@ -3,8 +3,8 @@
 // Run: motiontool run 03_speed_mode.m --seconds 10
 // Test-seconds: 10
 // Expect: forward:  AVEL 25600  speed mode 1
-// Expect: faster:   AVEL 51203
-// Expect: reverse:  AVEL -25583
+// Expect: faster:   AVEL 51250
+// Expect: reverse:  AVEL -25600
 // Expect: stopped:  AVEL 0  speed mode 0
 // Expect: holding at 73600
 // Expect-end: ended

@@ -2,7 +2,7 @@
 // Shows: PULSVEL, PULSACC, SYNCFACTM, SYNCFACTS, SYNCV, MAVEL, AVEL, MOTOR STOP
 // Run: motiontool run 29_syncv_conveyor.m --seconds 10
 // Test-seconds: 10
-// Expect: master 80000 qc/s  slave 40002
+// Expect: master 80000 qc/s  slave 39950
 // Expect: master 80000 qc/s  slave 102400
 // Expect: slave stopped at 280420
 // Expect-end: ended

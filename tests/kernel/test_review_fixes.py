@@ -103,7 +103,7 @@ def test_cli_set_with_a_bad_number(tmp_path):
     program.write_text("PRINT 1\n")
     proc = subprocess.run([sys.executable, "-m", "motiontool", "run", str(program), "--set", "KPROP=abc"],
                           capture_output=True, text=True, timeout=60)
-    assert proc.returncode == 1 and "not a whole number" in proc.stderr
+    assert proc.returncode == 1 and "--set KPROP=abc: give a whole number" in proc.stderr
 
 
 def test_endswmod_chooses_coasting_or_a_controlled_stop_at_a_limit_switch():
