@@ -1,6 +1,7 @@
 """The link syntax and scheme registry (comms/links.py), the virtual drive's nodes (comms/drive/): thread-safe
 requests, events with sequence numbers for a polling master, answers kept for repeated requests, the link timeout."""
 
+import re
 import threading
 import time
 
@@ -307,3 +308,17 @@ def test_every_link_takes_requests_from_several_threads():
             t.join()
         assert errors == []
     assert len(recording.ids) == len(set(recording.ids)) == 4 * 200 * 4
+
+
+@pytest.mark.parametrize("spec, message", [
+    ("fc:socket://127.0.0.1:1#1,poll=0", "option poll=0: give a number from 0.001 to 3600"),
+    ("fc:socket://127.0.0.1:1#1,poll=-5", "option poll=-5: give a number from 0.001 to 3600"),
+    ("fc:socket://127.0.0.1:1#1,timeout=nan", "option timeout=nan: give a number from 0.001 to 60"),
+    ("fc:socket://127.0.0.1:1#1,baud=12", "option baud=12: give a whole number from 300 to 4000000"),
+    ("fc:socket://127.0.0.1:1#1,format=3", "option format=3: give a whole number from 1 to 2"),
+    ("canopen:slcan:socket://127.0.0.1:1#1,heartbeat=70000", "option heartbeat=70000: give a whole number from 0 to "
+                                                             "65535"),
+])
+def test_link_options_are_refused_out_of_their_range_before_the_port_opens(spec, message):
+    with pytest.raises(LinkError, match=re.escape(message)):
+        links.open_link(spec)

@@ -16,6 +16,8 @@ from motiontool.comms.links import open_link
 from motiontool.comms.protocol import ConnectionLost, LinkError
 from motiontool.paramdb import database
 
+pytestmark = pytest.mark.wire
+
 
 @pytest.fixture(params=["pty", "socket"])
 def served(request):
@@ -82,6 +84,7 @@ def test_the_extension_carries_the_other_requests_and_events(served):
         link.close()
 
 
+@pytest.mark.slow
 def test_two_links_share_one_port_and_scan_finds_the_nodes(served):
     drive, url = served
     a, b = open_link(f"{url}#1"), open_link(f"{url}#2")
@@ -111,7 +114,7 @@ def test_closing_a_link_twice_leaves_the_shared_port_to_the_others(served):
 
 def test_a_bad_option_leaves_no_port_open(served):
     drive, url = served
-    with pytest.raises(LinkError, match="option poll='soon' is not valid"):
+    with pytest.raises(LinkError, match="option poll=soon: give a number from 0.001 to 3600"):
         open_link(f"{url}#1,poll=soon")
     assert not [bus for bus in FcBus._open.values() if bus.settings.url == url.removeprefix("fc:")]
 
@@ -290,6 +293,7 @@ def test_a_late_refusal_of_a_parameter_is_not_the_drive_refusing_the_extension()
         line.close()
 
 
+@pytest.mark.slow
 def test_a_scan_leaves_the_retries_of_the_links_on_its_bus_alone():
     """Open Interface scans a port other windows' controllers may be using: each probe gets one short try, while a
     link's own request on the same bus keeps its repeats (here the line loses every first try)."""

@@ -314,18 +314,18 @@ def open_canopen(spec: LinkSpec) -> CanopenLink:
     if not interface or not channel:
         raise LinkError(f"link '{spec.text}': give canopen:INTERFACE:CHANNEL[#NODE], e.g. "
                         "canopen:slcan:socket://127.0.0.1:4002#1 or canopen:socketcan:can0#3")
-    heartbeat = spec.option("heartbeat", 100, int)
+    heartbeat = spec.option("heartbeat", 100, int, 0, 65535)   # 0x1017 is an UNSIGNED16 in ms
     return CanopenLink(interface, channel, spec.node or 1, heartbeat_ms=heartbeat,
-                       consumer_ms=spec.option("consumer", None, int), sdo_timeout_s=spec.option("timeout", 1.0,
-                                                                                                    float),
-                       bitrate=spec.option("bitrate", None, int), eds_path=spec.option("eds", None),
+                       consumer_ms=spec.option("consumer", None, int, 0, 65535),
+                       sdo_timeout_s=spec.option("timeout", 1.0, float, 0.001, 60),
+                       bitrate=spec.option("bitrate", None, int, 10_000, 1_000_000), eds_path=spec.option("eds", None),
                        client=spec.option("client", "fast"))
 
 
 def scan_spec(spec: LinkSpec, ids) -> list[int]:
     """The IDE's scan range (comms/links.py scan_controllers): nodes answering an SDO request for 0x1000."""
     interface, _, channel = spec.target.partition(":")
-    return scan(interface, channel, [n for n in ids if 1 <= n <= 127], bitrate=spec.option("bitrate", None, int))
+    return scan(interface, channel, [n for n in ids if 1 <= n <= 127], bitrate=spec.option("bitrate", None, int, 10_000, 1_000_000))
 
 
 register_link_scheme("canopen", open_canopen, "canopen:INTERFACE:CHANNEL[#NODE]",

@@ -135,15 +135,17 @@ def bus_settings(spec: LinkSpec) -> BusSettings:
         raise LinkError(f"link '{spec.text}': parity {parity!r}: choose E, N or O")
     if not spec.target:
         raise LinkError(f"link '{spec.text}': give the port, e.g. fc:/dev/ttyUSB0#1 or fc:socket://host:port#1")
-    return BusSettings(spec.target, spec.option("baud", DEFAULT_BAUD, int), PARITIES[parity],
-                       spec.option("stopbits", 1, int), spec.option("timeout", 0.2, float),
-                       spec.option("retries", 3, int))
+    # ranges: what a serial port, the FC protocol (8-32: up to 115200 baud; a USB adapter goes further) and a
+    # usable link allow
+    return BusSettings(spec.target, spec.option("baud", DEFAULT_BAUD, int, 300, 4_000_000), PARITIES[parity],
+                       spec.option("stopbits", 1, int, 1, 2), spec.option("timeout", 0.2, float, 0.001, 60),
+                       spec.option("retries", 3, int, 0, 100))
 
 
 def open_fc(spec: LinkSpec) -> FcLink:
     spec.check_options(OPTIONS)
     address = spec.node if spec.node is not None else 1
-    fmt = spec.option("format", None, int)
+    fmt = spec.option("format", None, int, 1, 2)
     try:
         encode_address(address, fmt=fmt)
     except ValueError as exc:
@@ -152,7 +154,7 @@ def open_fc(spec: LinkSpec) -> FcLink:
     faults = faults_from_options(spec)
     if faults.active:  # a spoilt line is a different bus from the clean one on the same port
         settings.faults = faults
-    poll = spec.option("poll", None, float)   # every option is checked before the port is opened
+    poll = spec.option("poll", None, float, 0.001, 3600)   # every option is checked before the port is opened
     bus = FcBus.open(settings, (lambda port: FaultyPort(port, faults)) if faults.active else None)
     return FcLink(bus, address, fmt, default_poll_interval(bus) if poll is None else poll)
 
@@ -188,7 +190,7 @@ def scan_spec(spec: LinkSpec, addresses) -> list[int]:
     spec.check_options(OPTIONS)
     bus = FcBus.open(bus_settings(spec))
     try:
-        return scan(bus, addresses, spec.option("format", None, int))
+        return scan(bus, addresses, spec.option("format", None, int, 1, 2))
     finally:
         bus.release()
 
