@@ -1,5 +1,6 @@
 """Documented commands the simulated controller serves only with the manual's own failure result, because the
-device they talk to does not exist in the simulation (issue 15: never error 110 for a documented command).
+device they talk to does not exist in the simulation (issue 15: never error 110 for a documented command), or only
+in part (the FC 300's parameters and alarm, kernel/fc300.py).
 
 `check`/`compile` warn where a program uses one (codegen_expr.py); the kernel (kernel/unserved.py) answers each as
 the manual says a controller without that device answers.
@@ -22,6 +23,13 @@ UNSERVED: dict[str, str] = {
     "INKEY": "the simulated controller has no LCP keypad: INKEY reads only keys a host presses (kernel/lcp.py "
              "press_key); without one INKEY (-1) returns -1 and INKEY 0 waits for ever (CR 1701-1738)",
 }
+
+
+_FC300 = ("the simulated FC 300 holds only the parameters docs/fc300.md lists (others stop with error 112) and has "
+          "no electrical model: power, motor voltage, current and torque (16-10, 16-12, 16-14, 16-16, 16-22) read 0")
+UNSERVED.update({name: _FC300 for name in ("GETVLT", "GETVLTSUB", "SETVLT", "SETVLTSUB")})
+UNSERVED["VLTALARMSTAT"] = ("the simulated FC 300 trips only when a host trips it (kernel/fc300.py trip); until then "
+                            "VLTALARMSTAT returns 0")
 
 
 def unserved_note(name: str) -> str | None:

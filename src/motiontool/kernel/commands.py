@@ -446,6 +446,7 @@ def delete_arrays(ctl, vm, args):
 @command("ERRCLR")
 def errclr(ctl, vm, args):
     ctl.clear_error()
+    fc300.reset_alarm(ctl)   # CR 1315: "ERRCLR also resets FC 300 alarms by means of Bit 7 of the control word"
 
 
 @command("DISABLE")
@@ -506,4 +507,4 @@ def sysvar(ctl, vm, args):
 
 # the synchronisation, marker and CAM commands, the CAN commands and those without a simulated device live in
 # their own modules; importing them registers them
-from motiontool.kernel import axis_readouts, can_commands, comopt, lcp, sync_commands, unserved  # noqa: E402, F401, I001
+from motiontool.kernel import axis_readouts, can_commands, comopt, fc300, lcp, sync_commands, unserved  # noqa: E402, F401, I001
