@@ -8,7 +8,8 @@ import math
 import os
 import re
 import sys
-from dataclasses import dataclass, field
+import time
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TextIO
 
@@ -18,6 +19,7 @@ from motiontool.cameditor.transfer import download_config
 from motiontool.cameditor.zbc import ConfigError, read_config
 from motiontool.cliargs import PARAMETER_VALUE, BadNumber, node_id, parse_input, parse_setting, shown, whole
 from motiontool.comms.embedded import EmbeddedLink
+from motiontool.comms.eventorder import TimeOrder
 from motiontool.comms.links import LinkSpecError, parse_link_spec
 from motiontool.comms.protocol import LinkError, LinkEvent
 from motiontool.dpl.driver import is_dpl
@@ -324,9 +326,7 @@ def run_program(path: Path | None, options: RunOptions, out: TextIO | None = Non
 def open_run_link(spec: str | None, realtime: bool = False, node: int | None = None):
     """The controller of a run: the embedded simulator (virtual time unless `realtime`) or `--link SPEC`, with
     `node` as its address when given."""
-    from dataclasses import replace
-
-    from motiontool.comms.links import open_link, parse_link_spec
+    from motiontool.comms.links import open_link
 
     parsed = parse_link_spec(spec or "sim")
     if parsed.scheme == "sim" and not parsed.options:
@@ -335,13 +335,12 @@ def open_run_link(spec: str | None, realtime: bool = False, node: int | None = N
 
 
 def run_until_stopped(links: list, options: RunOptions, time_base: int, output: PrintOutput,
-                      failed=lambda: False) -> None:
+                      failed=lambda: False, reached=lambda time_ms: None) -> None:
     """Controller time runs until every program has stopped or --seconds are up: the first link's `advance`
     moves a virtual clock (all nodes of one simulator share it), paced at real time with --realtime; a clock that
-    runs by itself (a drive) is watched in 50 ms steps. Events are fetched after every step, before the status; a
-    closed stdout or ``failed()`` (an output that cannot be written) ends the run after the step."""
-    import time
-
+    runs by itself (a drive) is watched in 50 ms steps. Events are fetched after every step, before the status,
+    and then ``reached(T)`` says that every link has delivered its events up to controller time T; a closed
+    stdout or ``failed()`` (an output that cannot be written) ends the run after the step."""
     total = int(options.seconds * 1000)
     lead = links[0]
     virtual = lead.virtual_time
@@ -352,13 +351,16 @@ def run_until_stopped(links: list, options: RunOptions, time_base: int, output: 
         if virtual:
             lead.advance(n)
             elapsed += n
+            now = time_base + elapsed
             if options.realtime:  # pace virtual time at real time
                 time.sleep(max(0.0, elapsed / 1000 - (time.monotonic() - started)))
         else:
             time.sleep(max(0.0, (elapsed + n) / 1000 - (time.monotonic() - started)))
-            elapsed = max(elapsed + 1, lead.status().time_ms - time_base)
+            now = lead.status().time_ms  # read before the flush: every event up to it is then fetched
+            elapsed = max(elapsed + 1, now - time_base)
         for link in links:
             link.flush_events()
+        reached(now)
         if output.closed or failed() or all(link.status().program_state != "running" for link in links):
             break
 
@@ -462,19 +464,26 @@ def run_nodes(path: Path | None, options: RunOptions, out: TextIO | None = None,
     trace: TraceWriter | None = None
     output = PrintOutput(out)
 
+    def show(n: int, event: LinkEvent) -> None:
+        if event.kind == "print":
+            output.line(f"{n}: {event.text}")
+        elif event.kind == "error":
+            where = f" (line {event.line})" if event.line else ""
+            print(f"{n}: {event.text}{where}", file=err)
+        else:
+            print(f"{n}: motiontool run: {event.text}", file=err)
+
+    # the nodes' lines in (time, node) order as the embedded bus prints them, whichever link delivered first
+    order = TimeOrder(show)
+
     def listener(n: int):
         def on_event(event: LinkEvent) -> None:
-            if event.kind == "print":
-                output.line(f"{n}: {event.text}")
-            elif event.kind == "error":
-                where = f" (line {event.line})" if event.line else ""
-                print(f"{n}: {event.text}{where}", file=err)
+            if event.kind in ("print", "error", "message", "connection"):
+                order.add(n, event)
             elif event.kind == "program" and event.text == "program error":
                 failed.add(n)
             elif event.kind == "samples" and trace is not None:
                 trace.add(n, event.data)
-            elif event.kind in ("message", "connection"):
-                print(f"{n}: motiontool run: {event.text}", file=err)
         return on_event
 
     try:
@@ -493,7 +502,8 @@ def run_nodes(path: Path | None, options: RunOptions, out: TextIO | None = None,
             links[n].download(images[n].to_bytes(), name=images[n].name)
             links[n].start()
         run_until_stopped([links[n] for n in nodes], options, time_base, output,
-                          lambda: trace is not None and trace.error is not None)
+                          lambda: trace is not None and trace.error is not None, order.release)
+        order.release()
         output.flush()
         if trace is not None:
             for n in nodes:
@@ -505,12 +515,14 @@ def run_nodes(path: Path | None, options: RunOptions, out: TextIO | None = None,
             for n in nodes:
                 _write_recordings(links[n], _record_path(options.record, n))
     except LinkError as exc:
+        order.release()  # what arrived before the link failed, then why it ended
         print(f"motiontool run: {exc}", file=err)
         return EXIT_CONTROLLER
     except _OutputError as exc:  # the folder went away or the disk filled up during the run
         print(f"motiontool run: {exc}", file=err)
         return EXIT_REFUSED
     finally:
+        order.release()
         if trace is not None:
             trace.discard()
         close()
@@ -525,7 +537,6 @@ def _node_links(nodes: list[int], options: RunOptions):
     """({node: link}, close) for a run on several controllers: one embedded bus, or the --link interface with each
     node id as the address."""
     from motiontool.comms.bus import EmbeddedBus
-    from motiontool.comms.links import parse_link_spec
 
     if parse_link_spec(options.link or "sim").scheme == "sim":
         bus = EmbeddedBus(nodes, master_node=options.master_node if options.master_node is not None else nodes[0])

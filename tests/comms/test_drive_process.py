@@ -20,6 +20,8 @@ from motiontool.paramdb import database
 from tests.comms.drive_process import DrivePool, DriveProcess, drive_process
 from tests.test_samples import SAMPLES, parse_header
 
+pytestmark = pytest.mark.wire
+
 ROOT = Path(__file__).resolve().parents[2]
 
 
@@ -100,6 +102,7 @@ def test_drive_says_where_it_listens_and_stops_cleanly_on_sigint_sigterm_and_the
         link.close()
 
 
+@pytest.mark.slow
 def test_every_parameter_reads_and_writes_over_the_wire():
     """`motiontool params --link` reads all 262 as the simulator holds them; every writable one is written (a
     value different from the default, inside its range) and read back."""
@@ -246,6 +249,22 @@ def test_two_nodes_behind_one_drive_print_what_the_embedded_bus_prints(tmp_path)
         err = io.StringIO()
         assert run_program(master, options, io.StringIO(), err) == 1
         assert "motiontool drive --master-node" in err.getvalue()
+
+
+def test_two_nodes_printing_in_the_same_milliseconds_come_out_in_time_then_node_order(tmp_path):
+    """Each node's link polls its own events (here every millisecond, racing the run's flushes), so node 2's line
+    of a millisecond can arrive before node 1's; the run prints them in (time, node) order as the embedded bus
+    does. This failed intermittently before the run ordered them (issue 28 item 3)."""
+    program = "i = 0\nWHILE i < 100 DO\n  DELAY 3\n  i = i + 1\n  PRINT \"{} \", i\nENDWHILE\n"
+    first, second = tmp_path / "a.m", tmp_path / "b.m"
+    first.write_text(program.format("a"))
+    second.write_text(program.format("b"))
+    options = RunOptions(seconds=1, nodes=[f"2:{second}"])
+    for _ in range(3):
+        with drive_process("--clock", "virtual", "--node", "1", "--node", "2") as drive:
+            embedded, wire = run_both(first, options, drive.url + ",poll=0.001")
+        assert wire == embedded
+    assert embedded[1].splitlines()[:4] == ["1: a 1", "2: b 1", "1: a 2", "2: b 2"]
 
 
 def test_a_missing_drive_is_a_clear_error():
