@@ -1,7 +1,10 @@
 """GETVLT/GETVLTSUB/SETVLT/SETVLTSUB, VLTALARMSTAT/VLTCONTROL/VLTERRCLR and ERRCLR's bit 7 on the simulated FC 300
 (issue 25; kernel/fc300.py, docs/fc300.md, K124-K126): they ended with error 110."""
 
+import pytest
+
 from motiontool.aposs.driver import compile_source
+from motiontool.comms.protocol import LinkError
 from motiontool.kernel.fc300 import trip
 
 from .helpers import run_source, start
@@ -61,12 +64,12 @@ def test_setvltsub_example_as_printed_is_rejected_and_025_is_octal_21():
     assert meant.prints == ["100 0"]
 
 
-def test_unknown_number_is_112_and_read_only_index_and_range_are_183():
+def test_unknown_number_and_read_only_are_112_and_index_and_range_are_183():
     # DG 11522-11524: 112 "An attempt has been made to change a parameter (SET or SETVLT command), which does not
-    # exist"; DG 7594: "Parameter groups 16-** and 34-** are read only"; 4-13 ranges "par. 4-11 - 60000 RPM" (FC 301
-    # programming manual); a parameter without index has only index 0 (K124)
+    # exist"; DG 7594: "Parameter groups 16-** and 34-** are read only" (112 as SET of a 34-**); 4-13 ranges
+    # "par. 4-11 - 60000 RPM" (FC 301 programming manual); a parameter without index has only index 0 (K124)
     assert [e.number for e in run_source("x = GETVLT 4242\n", 1000).errors] == [112]
-    assert [e.number for e in run_source("SETVLT 1613 500\n", 1000).errors] == [183]
+    assert [e.number for e in run_source("SETVLT 1613 500\n", 1000).errors] == [112]
     assert [e.number for e in run_source("SETVLT 413 60001\n", 1000).errors] == [183]
     assert [e.number for e in run_source("x = GETVLTSUB 540 2\n", 1000).errors] == [183]
     assert [e.number for e in run_source("x = GETVLTSUB 413 1\n", 1000).errors] == [183]
@@ -103,3 +106,15 @@ def test_vlterrclr_clears_only_the_drive_alarm():
     run.advance(300)
     assert run.prints == ["1", "0 0", "3847"]
     assert run.errors == []
+
+
+def test_a_link_reads_and_writes_the_drives_parameters_by_their_lcp_number():
+    # the IDE/command line name a drive parameter as the LCP does ("4-13"); the MCO's own groups 19/32/33/34 stay
+    # the controller's (K124)
+    link = run_source("SETVLT 413 1400\n", 1000).link
+    assert link.read_parameter("4-13") == 1400
+    link.write_parameter("3-03", 60000)
+    assert run_source("PRINT GETVLT 303\n", 1000, link=link).prints == ["60000"]
+    assert link.read_parameter("32-60") == link.read_parameter("KPROP")
+    with pytest.raises(LinkError, match="112"):
+        link.write_parameter("16-13", 500)   # DG 7594: read only

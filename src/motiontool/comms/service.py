@@ -11,6 +11,7 @@ from typing import Any
 from motiontool.aposs.image import ImageError, ProgramImage
 from motiontool.comms import scope_recording
 from motiontool.comms.protocol import OPERATIONS, PROTOCOL_VERSION, LinkEvent, Request, Response, Status
+from motiontool.kernel import fc300
 from motiontool.kernel.arrays import MAX_ARRAY_ELEMENTS
 from motiontool.kernel.controller import Controller, Event
 from motiontool.kernel.errors import ControllerError
@@ -116,9 +117,16 @@ class ControllerService:
                       c.uu(c.axis.apos), c.uu(c.axis.cpos), c.axis.axend()).to_dict()
 
     def op_read_parameter(self, key) -> int:
+        number = fc300.link_number(key)   # "4-13": the FC 300's own parameter, as GETVLT reads it (docs/fc300.md)
+        if number is not None:
+            return fc300.read(self.controller, number)
         return self.controller.params.get(key)
 
     def op_write_parameter(self, key, value) -> None:
+        number = fc300.link_number(key)
+        if number is not None:
+            fc300.write(self.controller, number, 0, int(value))
+            return
         self.controller.params.set(key, int(value), source="link")
 
     def op_list_arrays(self) -> list[dict]:

@@ -124,13 +124,22 @@ def write(ctl, number: int, index: int, value: int) -> None:
     p = _parameter(number)
     index = _index(p, index)
     fc = drive(ctl)
-    if p.read_only:   # DG 7594: "Parameter groups 16-** and 34-** are read only"
-        raise ControllerError(183, f"{p.label} {p.name} is read only")
+    if p.read_only:   # DG 7594: "Parameter groups 16-** and 34-** are read only"; 112 as SET of a 34-** (K124)
+        raise ControllerError(112, f"{p.label} {p.name} is read only")
     low = fc.value(FC_PARAMETERS[p.low_par]) if p.low_par else p.low
     high = fc.value(FC_PARAMETERS[p.high_par]) if p.high_par else p.high
     if not low <= value <= high:
         raise ControllerError(183, f"{value} is outside {p.label} {p.name}'s range {low}..{high}")
     fc.written[(number, index)] = int(value)
+
+
+def link_number(key) -> int | None:
+    """The FC 300 parameter a link names as "4-13" (the LCP's form), or None: the MCO 305's own groups 19, 32, 33
+    and 34 are the controller's parameters, not the drive's."""
+    group, dash, number = str(key).strip().partition("-")
+    if not (dash and group.isdigit() and number.isdigit()) or int(group) in (19, 32, 33, 34):
+        return None
+    return int(group) * 100 + int(number) if int(number) < 100 else None
 
 
 class _Transfer(Wait):
