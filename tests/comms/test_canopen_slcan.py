@@ -5,12 +5,15 @@ from __future__ import annotations
 
 import itertools
 import socket
+import sys
 import time
 
 import can
 import pytest
 
 from motiontool.comms.canopen import slcan
+
+pytestmark = pytest.mark.wire
 
 _names = itertools.count(1)
 
@@ -119,3 +122,23 @@ def test_the_links_reader_and_python_cans_slcan_both_read_the_server(server):
     finally:
         fast.shutdown()
         stock.shutdown()
+
+
+def test_close_ends_every_thread_of_the_server_even_with_a_client_connected():
+    """A drive ends on SIGTERM by closing its listeners: the thread waiting in accept() must end too. On Linux
+    closing a listening socket does not wake accept(), so it stayed blocked and every close waited out its 2 s join
+    (a drive process 'slow to end on SIGTERM', issue 28 item 3)."""
+    server = slcan.SlcanServer(f"test-slcan-{next(_names)}")
+    client = socket.create_connection((server.host, server.port))
+    accepting = server._threads[0]
+    deadline = time.monotonic() + 30
+    while not (server.clients and in_accept(accepting)) and time.monotonic() < deadline:  # back in accept()
+        time.sleep(0.01)
+    server.close()
+    assert not [thread.name for thread in server._threads if thread.is_alive()]
+    client.close()
+
+
+def in_accept(thread) -> bool:
+    frame = sys._current_frames().get(thread.ident)
+    return frame is not None and frame.f_code.co_name == "accept"

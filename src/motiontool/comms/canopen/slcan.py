@@ -245,6 +245,10 @@ class SlcanServer:
 
     def close(self) -> None:
         self.closed = True
+        # shutdown wakes the thread blocked in accept(); on Linux a close() alone does not, and the join below
+        # then waited its full 2 s at every close (a drive's SIGTERM, every test's teardown)
+        with contextlib.suppress(OSError):
+            self._listener.shutdown(socket.SHUT_RDWR)
         with contextlib.suppress(OSError):
             self._listener.close()
         with self._clients_lock:
