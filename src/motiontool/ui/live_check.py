@@ -50,6 +50,10 @@ class LiveCheck(QObject):
         job = self._newest
         return job is not None and job.result is None and not job.cancel.is_set()
 
+    def newest_text(self) -> str | None:
+        """The text of the newest check asked for (None before the first)."""
+        return None if self._newest is None else self._newest.text
+
     def request(self, editor, path: str) -> None:
         if self._newest is not None:
             self._newest.cancel.set()
