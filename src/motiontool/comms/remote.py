@@ -9,11 +9,15 @@ events after the last one it saw, every `poll_interval_s` or at once while the c
 while the connection is lost it keeps trying, and `alive` comes back with the first answer.
 `flush_events()` fetches what is waiting now (the CLI calls it before it reads the status, so output keeps its
 order). Events are published in sequence order, never twice; events the controller had to drop are reported
-as a ``message`` event.
+as a ``message`` event. A link sees the events of its own session only: its first request (or subscription)
+asks the controller where its numbering stands now (``events {now}``) and starts there, so another master's
+backlog (an earlier run's tail, a program the drive started by itself) is neither printed nor counted as lost
+(decision F29).
 """
 
 from __future__ import annotations
 
+import contextlib
 import random
 import threading
 from collections.abc import Callable
@@ -39,7 +43,7 @@ class RemoteLink(Link):
         self.session = random.getrandbits(31) + 1
         self._next_id = random.getrandbits(20)      # ids differ between links of one session's lifetime too
         self._bus = threading.RLock()               # one request on the wire at a time
-        self._events_lock = threading.Lock()        # one event poll at a time: events are published in order
+        self._events_lock = threading.RLock()       # one event poll at a time: events are published in order
         self._last_event = 0
         self._epoch: int | None = None
         self._closed = threading.Event()
@@ -55,6 +59,8 @@ class RemoteLink(Link):
     def request(self, request: Request) -> Any:
         if self._closed.is_set():
             raise ConnectionLost("the link is closed")
+        if self._epoch is None and request.op != "events":
+            self._mark_session()
         with self._bus:
             try:
                 answer = self._exchange(encode_request(request, self.session))
@@ -89,6 +95,9 @@ class RemoteLink(Link):
     # --- events ---------------------------------------------------------------------------------------
     def subscribe(self, callback: Callable[[LinkEvent], None]) -> None:
         super().subscribe(callback)
+        if self._epoch is None:
+            with contextlib.suppress(LinkError):   # a lost line: the first poll that gets through marks it
+                self.poll_events()
         if self._poller is None and self.alive:
             self._poller = threading.Thread(target=self._poll_loop, name=f"{self.kind}-events", daemon=True)
             self._poller.start()
@@ -96,6 +105,9 @@ class RemoteLink(Link):
     def poll_events(self) -> bool:
         """Fetch one batch of events and publish them; True when more are waiting."""
         with self._events_lock:
+            if self._epoch is None:
+                self._mark_session()
+                return False
             # the epoch names the numbering `after` belongs to: a restarted controller answers from its first event
             value = self.call("events", after=self._last_event, epoch=self._epoch)
             if self._epoch is not None and value.get("epoch") != self._epoch:
@@ -110,6 +122,13 @@ class RemoteLink(Link):
                     self._publish(LinkEvent(**data))
             self._last_event = int(value.get("last", self._last_event))
             return bool(value.get("more"))
+
+    def _mark_session(self) -> None:
+        """This session starts now: the events before it belong to other masters (or to nobody)."""
+        with self._events_lock:
+            if self._epoch is None:
+                mark = self.call("events", now=True)
+                self._epoch, self._last_event = mark.get("epoch"), int(mark.get("last", 0))
 
     def flush_events(self) -> None:
         while self.poll_events():

@@ -6,7 +6,9 @@ request ``events {after, max, epoch}`` returns the events after ``after`` (the l
 the ones up to it. ``after`` counts in the numbering of ``epoch`` (the one the master saw last): the master of a
 drive before its restart gets the new drive's events from the first. When more than `EVENT_LIMIT` are waiting the
 oldest are dropped and the next answer says how many (``lost``), so a master that stopped polling costs bounded
-memory (docs/link-protocol.md "Events on the wire").
+memory (docs/link-protocol.md "Events on the wire"). ``events {now: true}`` (a master's first poll) answers no
+events and the number to ask after: a master sees the events of its own session only, never another master's
+backlog (decision F29).
 """
 
 from __future__ import annotations
@@ -44,6 +46,11 @@ class EventQueue:
             if len(self._events) > self.limit:
                 self._events.popleft()
 
+    def now(self) -> dict[str, Any]:
+        """Where a new master starts: nothing fetched, nothing lost, `last` the newest number."""
+        with self._lock:
+            return {"events": [], "last": self.seq, "lost": 0, "more": False, "epoch": self.epoch}
+
     def after(self, seq: int, count: int = EVENTS_PER_ANSWER) -> dict[str, Any]:
         """The events after `seq` (at most `count`): {"events": [[seq, event], …], "last": the sequence number to
         ask after next time, "lost": events dropped unseen, "more": whether more are waiting, "epoch"}."""
@@ -80,6 +87,8 @@ class DriveNode:
         try:
             if op == "events":
                 args = request.args
+                if args.get("now"):
+                    return Response(request.id, True, self.events.now())
                 after = int(args.get("after", 0))
                 if args.get("epoch") not in (None, self.events.epoch):  # numbers of the drive before a restart
                     after = 0

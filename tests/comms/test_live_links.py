@@ -1,0 +1,60 @@
+"""Live links on a real machine (issue 24 items 1-3), end to end against `motiontool drive` as its own process:
+a run sees only its own session's events, a short stall of the drive is a pause and not the end of the run, and
+reading a CANopen node leaves its NMT state and heartbeat time as they were."""
+
+from __future__ import annotations
+
+import io
+import time
+
+import pytest
+
+from motiontool.headless import RunOptions, run_program
+from tests.comms.drive_process import drive_process
+
+pytestmark = pytest.mark.wire
+
+CANOPEN = "canopen:slcan:socket://127.0.0.1:0"
+COUNTING = "i = 0\nWHILE i < 20 DO\n  DELAY 10\n  i = i + 1\n  PRINT \"{} \", i\nENDWHILE\n"
+
+
+def run(path, options: RunOptions) -> tuple[int, str, str]:
+    out, err = io.StringIO(), io.StringIO()
+    code = run_program(path, options, out, err)
+    return code, out.getvalue(), err.getvalue()
+
+
+@pytest.mark.parametrize("listen", ["fc:socket://127.0.0.1:0", CANOPEN], ids=["fc", "canopen"])
+def test_a_second_run_on_the_same_drive_prints_only_its_own_output(tmp_path, listen):
+    """Before, the second run began with the first run's last lines (the events it had printed but not yet
+    acknowledged) and warned that controller events were lost."""
+    first, second = tmp_path / "a.m", tmp_path / "b.m"
+    first.write_text(COUNTING.format("a"))
+    second.write_text(COUNTING.format("b"))
+    options = RunOptions(seconds=1, nodes=[f"2:{second}"])
+    embedded = run(first, options)
+    assert embedded[0] == 0 and embedded[1].count("\n") == 40
+    with drive_process("--clock", "virtual", "--node", "1", "--node", "2", listen=listen) as drive:
+        for _ in range(2):
+            assert run(first, RunOptions(seconds=1, nodes=[f"2:{second}"], link=drive.url)) == embedded
+
+
+def test_a_drive_started_with_a_program_gives_its_backlog_to_nobody(tmp_path):
+    """`motiontool drive --node 1:prog.m` runs the program before any master connects: its output is not the
+    output of the first run that connects."""
+    early, later = tmp_path / "early.m", tmp_path / "later.m"
+    early.write_text('i = 0\nWHILE i < 300 DO\n  PRINT "early ", i\n  i = i + 1\nENDWHILE\n')
+    later.write_text('PRINT "mine"\n')
+    with drive_process("--node", f"1:{early}") as drive:
+        deadline = time.monotonic() + 60        # the drive's own clock runs the early program
+        while time.monotonic() < deadline:
+            from motiontool.comms.links import open_link
+
+            link = open_link(drive.url + "#1")
+            try:
+                if link.status().program_state != "running":
+                    break
+            finally:
+                link.close()
+            time.sleep(0.1)
+        assert run(later, RunOptions(seconds=1, link=drive.url + "#1")) == (0, "mine\n", "")
