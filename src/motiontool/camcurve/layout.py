@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from motiontool.camcurve.model import (
     FIX_POINT_TYPE_CODES,
     FIX_POINT_TYPES,
+    MAX_ARRAY_ELEMENTS,
     MAX_USER_PAIRS,
     MIN_FIX_POINTS_ARRAY,
     Curve,
@@ -103,6 +104,10 @@ def encode(curve: Curve) -> list[int]:
         raise CurveError("fix_points", f"the controller needs at least {MIN_FIX_POINTS_ARRAY} fix points "
                                        f"(FixPointNo), the curve has {len(curve.fix_points)}")
     n, f = len(curve.start_stop_pairs), len(curve.fix_points)
+    fixed = HEADER_LEN + CURVE_INFO_LEN + 6 * n + 3 * f + curve.interpolation_point_count
+    if fixed > MAX_ARRAY_ELEMENTS:  # refused before the interpolation points are computed (decisions R15)
+        raise CurveError("intervals", f"the array would have at least {fixed} elements, more than the controller's "
+                                      f"array memory of {MAX_ARRAY_ELEMENTS}")
     inp = interpolation_points(curve) if curve.interpolation else []
     m = max_start_stop_len(curve)
     i_ci = HEADER_LEN

@@ -26,6 +26,12 @@ FIX_POINT_TYPE_CODES = {"C": 0, "T": 1, "CZ": 2, "C3": 3, "P345": 4, "MSIN": 5, 
 MAX_NAME_LENGTH = 16  # "Names may be up to 16 characters long" [DG L3696]
 MAX_USER_PAIRS = 25  # "A maximum of 25 Start Stop point pairs can be defined" [DG L4048]
 MIN_FIX_POINTS_ARRAY = 4  # curve info FixPointNo "min 4" (cam-array-layout.md)
+#: The controller's array memory in elements (kernel/arrays.py MAX_ARRAY_ELEMENTS, error 175): one curve array
+#: holds its interpolation points, so no curve has more intervals (decisions R15).
+MAX_ARRAY_ELEMENTS = 1_000_000
+MAX_INTERVALS = MAX_ARRAY_ELEMENTS - 1
+#: The curve array holds whole cycles per minute (at least 1): a tiny value only made infinite interval times.
+CYCLES_PER_MIN = (1, 2 ** 31 - 1)
 
 # segment kinds produced by segment_kinds()
 LINE, SPLINE, TRAPEZOID, CUBIC, LAW = "line", "spline", "trapezoid", "cubic", "law"
@@ -227,6 +233,9 @@ class Curve:
             raise CurveError("master_length", "must be > 0")
         if not isinstance(self.intervals, int) or isinstance(self.intervals, bool) or self.intervals < 1:
             raise CurveError("intervals", f"must be an integer >= 1, got {self.intervals!r}")
+        if self.intervals > MAX_INTERVALS:  # before any interpolation point is computed
+            raise CurveError("intervals", f"{self.intervals} is more than the controller's array memory holds "
+                                          f"({MAX_ARRAY_ELEMENTS} elements): at most {MAX_INTERVALS}")
         self._validate_fix_points()
         for name in ("slave_stop_position", "correction_start", "correction_end", "max_correction",
                      "cycles_per_min", "master_marker_pos", "slave_marker_pos", "start_gradient", "end_gradient"):
@@ -236,8 +245,9 @@ class Curve:
                 raise CurveError(name, f"must lie inside the master cycle 0..{self.master_length:g}")
         if self.max_correction < 0:
             raise CurveError("max_correction", "must be >= 0")
-        if self.cycles_per_min <= 0:
-            raise CurveError("cycles_per_min", "must be > 0")
+        if not CYCLES_PER_MIN[0] <= self.cycles_per_min <= CYCLES_PER_MIN[1]:
+            raise CurveError("cycles_per_min", f"must be from {CYCLES_PER_MIN[0]} to {CYCLES_PER_MIN[1]} (the curve "
+                                               "array holds whole cycles per minute)")
         self._validate_pairs()
 
     def _validate_fix_points(self) -> None:

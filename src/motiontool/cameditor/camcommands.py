@@ -10,7 +10,15 @@ import sys
 from pathlib import Path
 
 from motiontool.camcurve.layout import CurveArrayError, element_count
-from motiontool.camcurve.model import Curve, CurveError, CurveType, FixPoint, StartStopPair, default_pairs
+from motiontool.camcurve.model import (
+    MAX_INTERVALS,
+    Curve,
+    CurveError,
+    CurveType,
+    FixPoint,
+    StartStopPair,
+    default_pairs,
+)
 from motiontool.cameditor.dat import DatError, read_dat, write_dat
 from motiontool.cameditor.zbc import ConfigError, ConfigFile, read_config, write_config
 from motiontool.cliargs import BadNumber, real, whole
@@ -22,7 +30,6 @@ class _InputError(ValueError):
 
 
 LONG = (-(1 << 31), (1 << 31) - 1)  # a curve's positions end up in controller longs
-MAX_INTERVALS = 1_000_000  # far more than an array memory of some 12 MiB holds: never a runaway allocation
 
 
 def _number(text: str, what: str) -> int | float:
@@ -67,6 +74,8 @@ def _fmt(value: float) -> str:
 
 def build_curve(args: argparse.Namespace) -> Curve:
     """The Curve the `cam build` options describe; raises CurveError or ValueError with a readable message."""
+    if not args.name.strip():  # a program could not DIM or SETCURVE an array without a name
+        raise _InputError(f"--name {args.name!r}: give the curve a name of 1 to 16 characters")
     points = tuple(_point(p) for p in args.point)
     if not points:
         raise _InputError("--point: at least one fix point is needed (the curve needs 4 for the controller)")

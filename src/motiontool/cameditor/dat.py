@@ -28,7 +28,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from motiontool.camcurve.layout import CurveArrayError, decode, encode
-from motiontool.camcurve.model import Curve, CurveError
+from motiontool.camcurve.model import MAX_ARRAY_ELEMENTS, MAX_INTERVALS, Curve, CurveError
 from motiontool.fileio import MiB, atomic_write_text, read_text
 
 DAT_VERSION = 1
@@ -106,9 +106,11 @@ def _float(text: str, line: int, key: str) -> float:
     raise DatError(f"{key} {text!r} is not a number", line)
 
 
-def _count(text: str, line: int, key: str, minimum: int) -> int:
+def _count(text: str, line: int, key: str, minimum: int, maximum: int) -> int:
     if not re.fullmatch(r"[0-9]{1,9}", text) or int(text) < minimum:
         raise DatError(f"{key} {text!r} is not an integer >= {minimum}", line)
+    if int(text) > maximum:  # the controller's array memory; checked before anything is built (decisions R15)
+        raise DatError(f"{key} = {text} is more than the controller's array memory allows ({maximum})", line)
     return int(text)
 
 
@@ -130,10 +132,10 @@ def parse_dat(text: str) -> DatCurve:
         if not lines[k].startswith(prefix):
             raise DatError(f"expected '{key} = ...', got {lines[k]!r}", k + 1)
         header[key] = lines[k][len(prefix):].strip()
-    intervals = _count(header["intervals"], 3, "intervals", 1)
+    intervals = _count(header["intervals"], 3, "intervals", 1, MAX_INTERVALS)
     start_gradient = _float(header["start_gradient"], 4, "start_gradient")
     end_gradient = _float(header["end_gradient"], 5, "end_gradient")
-    count = _count(header["elements"], 6, "elements", 1)
+    count = _count(header["elements"], 6, "elements", 1, MAX_ARRAY_ELEMENTS)
     body = lines[FIRST_VALUE_LINE - 1:]
     if len(body) < count:
         raise DatError(f"elements = {count} but only {len(body)} value lines follow (truncated?)", len(lines))

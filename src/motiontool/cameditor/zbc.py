@@ -17,6 +17,8 @@ from motiontool.camcurve.layout import CurveArrayError, decode, encode
 from motiontool.camcurve.model import (
     FIX_POINT_TYPES,
     LAW_TYPES,
+    MAX_ARRAY_ELEMENTS,
+    MAX_INTERVALS,
     Curve,
     CurveError,
     CurveType,
@@ -256,6 +258,9 @@ class _Reader:
         self.arrays: list[_ArraySection] = []
         self.curves: list[_CurveSection] = []
         self.seen_sections: set[str] = set()
+        self.array_names: set[str] = set()  # a set: a list scan per section made 40 000 arrays take 100 s
+        self.curve_names: set[str] = set()
+        self.elements = 0  # declared sizes so far, refused beyond the controller's array memory
         self.version = 1
 
     def error(self, message: str, line: int) -> ConfigError:
@@ -327,14 +332,16 @@ class _Reader:
             return inner, None
         kind, sep, name = inner.partition(" ")
         if kind == "array" and sep:
-            if any(a.name == name for a in self.arrays):
+            if name in self.array_names:
                 raise self.error(f"array {name!r} appears twice", number)
+            self.array_names.add(name)
             entry = _ArraySection(name, number)
             self.arrays.append(entry)
             return "array", entry
         if kind == "curve" and sep:
-            if any(c.name == name for c in self.curves):
+            if name in self.curve_names:
                 raise self.error(f"curve {name!r} appears twice", number)
+            self.curve_names.add(name)
             entry2 = _CurveSection(name, number)
             self.curves.append(entry2)
             return "curve", entry2
@@ -372,6 +379,10 @@ class _Reader:
             text = value.strip()
             if not re.fullmatch(r"[0-9]{1,9}", text) or int(text) < 1:
                 raise self.error(f"array {entry.name}: size {text!r} is not a positive integer", number)
+            self.elements += int(text)
+            if self.elements > MAX_ARRAY_ELEMENTS:  # before the values are read (decisions R15)
+                raise self.error(f"array {entry.name}: size = {text} takes the arrays to {self.elements} elements, "
+                                 f"more than the controller's array memory of {MAX_ARRAY_ELEMENTS}", number)
             entry.size, entry.size_line = int(text), number
         elif key == "curve":
             if entry.curve is not None:
@@ -428,6 +439,9 @@ class _Reader:
         text, line = entry.keys["intervals"]
         if not _INT_RE.fullmatch(text) or len(text) > 12:
             raise self.error(f"curve {name}: intervals {text!r} is not an integer", line)
+        if int(text) > MAX_INTERVALS:  # never computes 10^8 interpolation points (decisions R15)
+            raise self.error(f"curve {name}: intervals = {int(text)} is more than the controller's array memory "
+                             f"allows ({MAX_INTERVALS})", line)
         kw["intervals"] = int(text)
         text, line = entry.keys["interpolation"]
         if text not in ("yes", "no"):
