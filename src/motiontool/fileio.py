@@ -53,7 +53,9 @@ def read_bytes(path: Path | str, limit: int, what: str = "file") -> bytes:
         _refuse_irregular(path, info.st_mode)
         if info.st_size > limit:
             raise _too_large(path, info.st_size, limit, what)
-        data = f.read(limit + 1)
+        data = f.read(info.st_size + 1)  # not read(limit + 1): that allocates the whole limit (1 GiB for .zbo)
+        if len(data) > info.st_size:  # it grows while we read: at most to the limit
+            data += f.read(limit + 1 - len(data))
     if len(data) > limit:  # it grew while we read
         raise _too_large(path, len(data), limit, what)
     return data

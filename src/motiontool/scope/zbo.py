@@ -35,7 +35,8 @@ MAGIC = "motiontool oscilloscope"
 VERSION = 2                 # the newest version read and written; 2 added source.select (docs/formats/zbo.md)
 SELECT_VERSION = 2          # a file is written as version 1 unless a curve has a byte/word/bit selection
 ENCODING = "f8le-zlib-base64"
-MAX_SAMPLES = 100_000_000   # per curve: refuse absurd counts before allocating
+MAX_SAMPLES = 10_000_000    # per curve, checked before allocating: a ring buffer takes 32 bytes a sample
+MAX_FILE_SAMPLES = 20_000_000  # all curves of a file together (640 MB of buffers; decisions R16)
 MAX_BYTES = 1024 * MiB      # ten million samples per curve are some 200 MiB (decisions R4)
 
 
@@ -53,9 +54,15 @@ def encode_array(a: np.ndarray) -> str:
 def decode_array(text: object, count: int, where: str) -> np.ndarray:
     if not isinstance(text, str):
         raise ZboError(f"{where}: expected base64 text")
+    inflate = zlib.decompressobj()
     try:
-        raw = zlib.decompress(base64.b64decode(text.encode("ascii"), validate=True), bufsize=count * 8 + 1)
+        # never more than the declared count is inflated: a 1.3 MB bomb of 1 GiB stops at count * 8 bytes
+        raw = inflate.decompress(base64.b64decode(text.encode("ascii"), validate=True), count * 8)
+        if not inflate.eof and inflate.decompress(inflate.unconsumed_tail, 1):
+            raise ZboError(f"{where}: inflates to more than the {count} values 'count' says")
     except (binascii.Error, zlib.error, UnicodeEncodeError, ValueError) as exc:
+        if isinstance(exc, ZboError):
+            raise
         raise ZboError(f"{where}: not {ENCODING} data ({exc})") from None
     if len(raw) != count * 8:
         raise ZboError(f"{where}: {len(raw) // 8} values, 'count' says {count}")
@@ -161,6 +168,7 @@ class _Reader:
     def __init__(self, name: str):
         self.name = name
         self.version = VERSION
+        self.samples = 0  # capacities of the curves read so far
 
     def fail(self, where: str, message: str):
         raise ZboError(f"{self.name}: {where}: {message}" if where else f"{self.name}: {message}")
@@ -264,6 +272,10 @@ class _Reader:
         capacity = obj.get("capacity", 10_000)
         if not isinstance(capacity, int) or isinstance(capacity, bool) or not 1 <= capacity <= MAX_SAMPLES:
             self.fail(f"{where}.capacity", f"expected an integer 1..{MAX_SAMPLES}")
+        self.samples += capacity
+        if self.samples > MAX_FILE_SAMPLES:
+            self.fail(f"{where}.capacity", f"the curves' capacities add up to {self.samples}, more than the "
+                                           f"{MAX_FILE_SAMPLES} samples a file may hold")
         data = obj.get("data")
         if data is not None:
             data = self.dict(data, f"{where}.data")
