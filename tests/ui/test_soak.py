@@ -1,7 +1,10 @@
-"""Soak guard for the Qt stack: 8 live pyqtgraph curves for 60 s must not crash or leak.
+"""Soak guard for the Qt stack: 8 live pyqtgraph curves for 15 s must not crash or leak.
 
 It protects the PySide6 pin (< 6.12: 6.12.0 decrements None's refcount on every void call under
-Python 3.11 and aborts the interpreter after enough calls).
+Python 3.11 and aborts the interpreter after enough calls). Every frame makes hundreds of void calls (8 setData
+and a repaint), and None's reference count in a Qt process is in the tens of thousands, so that abort comes within
+the first seconds: 15 s of drawing (~750 frames) keep the guard. The minute-long run with its figures is
+`benchmarks/qt_soak.py`; MOTIONTOOL_SOAK_SECONDS sets this test's length.
 """
 
 import json
@@ -12,11 +15,11 @@ from pathlib import Path
 
 import pytest
 
-SECONDS = float(os.environ.get("MOTIONTOOL_SOAK_SECONDS", "60"))
+SECONDS = float(os.environ.get("MOTIONTOOL_SOAK_SECONDS", "15"))
 
 
 @pytest.mark.soak
-def test_eight_live_curves_for_a_minute():
+def test_eight_live_curves_without_a_crash_or_a_leak():
     script = Path(__file__).with_name("soak_plot.py")
     proc = subprocess.run([sys.executable, str(script), str(SECONDS)], capture_output=True, text=True,
                           timeout=SECONDS + 120, env={**os.environ, "QT_QPA_PLATFORM": "offscreen"})
