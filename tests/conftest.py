@@ -1,5 +1,8 @@
+import importlib.util
 import os
+from pathlib import Path
 
+import pytest
 from hypothesis import settings
 
 # Every test runs without a screen; Qt renders offscreen.
@@ -12,3 +15,23 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 # checks is unchanged.
 settings.register_profile("motiontool", deadline=None)
 settings.load_profile("motiontool")
+
+
+TESTS = Path(__file__).resolve().parent
+
+
+def pytest_addoption(parser):
+    # qt_api (pyproject.toml) is pytest-qt's; the environment without Qt (make test-headless) has no pytest-qt
+    if importlib.util.find_spec("pytestqt") is None:
+        parser.addini("qt_api", "the Qt binding of pytest-qt (unused without it)")
+
+
+def pytest_collection_modifyitems(config, items):
+    """A test that needs Qt is a `gui` test: everything in a `ui` test package and every test using qtbot (the
+    others run without Qt installed, `make test-headless`). The longest tests are handed out first, so that with
+    several workers (pytest-xdist) none of them starts last while the others are idle."""
+    for item in items:
+        if "qtbot" in getattr(item, "fixturenames", ()) or "ui" in item.path.relative_to(TESTS).parts[:-1]:
+            item.add_marker(pytest.mark.gui)
+    weight = {"soak": 0, "slow": 1}
+    items.sort(key=lambda item: min((w for m, w in weight.items() if item.get_closest_marker(m)), default=2))

@@ -18,6 +18,10 @@ import importlib
 import inspect
 from pathlib import Path
 
+import pytest
+
+pytestmark = pytest.mark.gui  # it imports the Qt packages it checks
+
 SRC = Path(__file__).resolve().parents[1] / "src"
 QT_PACKAGES = ("motiontool/ui", "motiontool/scope/ui", "motiontool/cameditor/ui", "motiontool/arrayeditor/ui")
 FOREIGN = ("PySide6", "shiboken6", "pyqtgraph")

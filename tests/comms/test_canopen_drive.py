@@ -19,6 +19,8 @@ from tests.comms.drive_process import DrivePool, drive_process
 from tests.comms.test_drive_process import run_both
 from tests.test_samples import SAMPLES, parse_header
 
+pytestmark = pytest.mark.wire
+
 LISTEN = "canopen:slcan:socket://127.0.0.1:0"
 
 

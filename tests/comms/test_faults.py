@@ -18,6 +18,8 @@ from motiontool.paramdb import database
 from tests.comms.drive_process import DrivePool, drive_process
 from tests.test_samples import SAMPLES, parse_header
 
+pytestmark = pytest.mark.wire
+
 BAD = "drop=5,corrupt=5,timeout=0.1"
 
 
@@ -57,6 +59,7 @@ def pool():
     pool.close()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", [1, 2])
 def test_every_parameter_write_is_right_or_refused_clearly(pool, seed):
     drive = pool.take()
@@ -100,6 +103,7 @@ def test_every_parameter_write_is_right_or_refused_clearly(pool, seed):
 SOME_SAMPLES = [p for p in SAMPLES if p.name[:2] in ("01", "07", "13", "20", "28")]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("path", SOME_SAMPLES, ids=[p.stem for p in SOME_SAMPLES])
 def test_samples_print_the_same_or_fail_clearly(path, pool):
     header = parse_header(path)
@@ -127,6 +131,7 @@ def image(source, debug=False):
     return result.image.to_bytes()
 
 
+@pytest.mark.slow
 def test_downloads_arrays_cam_debugger_and_recordings_over_a_bad_line(tmp_path):
     import subprocess
     import sys
@@ -135,9 +140,10 @@ def test_downloads_arrays_cam_debugger_and_recordings_over_a_bad_line(tmp_path):
     from motiontool.cameditor.zbc import read_config
 
     conf = tmp_path / "c.zbc"
-    subprocess.run([sys.executable, "-m", "motiontool", "cam", "build", "--name", "c", "--master-length", "4000",
-                    "--point", "0,0,C", "--point", "1500,1200,T", "--point", "2500,2400,T", "--point", "4000,3600,C",
-                    "-o", str(conf)], check=True, capture_output=True, timeout=120)
+    built = subprocess.run([sys.executable, "-m", "motiontool", "cam", "build", "--name", "c", "--master-length",
+                            "4000", "--point", "0,0,C", "--point", "1500,1200,T", "--point", "2500,2400,T", "--point",
+                            "4000,3600,C", "-o", str(conf)], capture_output=True, text=True, timeout=120)
+    assert built.returncode == 0, built.stderr
     with drive_process("--clock", "virtual") as drive:
         bad = open_link(f"{drive.url}#1,{BAD},retries=6,seed=11")
         clean = open_link(drive.url + "#1")
@@ -186,6 +192,7 @@ def test_downloads_arrays_cam_debugger_and_recordings_over_a_bad_line(tmp_path):
         clean.close()
 
 
+@pytest.mark.slow
 def test_polling_scope_and_two_nodes_over_a_bad_line(tmp_path, pool):
     """Free Run (polling): every poll is right or refused, times only grow; two nodes behind one drive print what
     the embedded bus prints, or the run fails with a clear error."""

@@ -100,6 +100,7 @@ def test_slave_synchronisation_with_marker_as_printed_ends_and_does_not_engage()
     assert ctl.axis.mode == "idle" and ctl.axis.cpos == stop and ctl.master.mapos > 10000
 
 
+@pytest.mark.slow
 def test_slave_synchronisation_with_marker_brings_every_box_to_the_stamp_at_slave_position_1000():
     """DG 1612: "here the slave position is being corrected instead of the curve"; DG 1700-1708: photoelectric beam
     3900 before the processing point, window 200, "Slave-Marker-Position = 1000" (the beginning of the box);

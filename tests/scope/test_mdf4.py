@@ -29,18 +29,6 @@ def test_without_asammdf_the_message_says_what_to_install(monkeypatch, tmp_path)
     assert not (tmp_path / "x.mf4").exists()
 
 
-def test_the_window_exports_csv_or_mdf4_by_suffix(qtbot, monkeypatch, tmp_path):
-    from motiontool.scope.ui import ScopeWindow
-
-    w = ScopeWindow(None, "free_run", scope=scope(), ask=False)
-    qtbot.addWidget(w)
-    w.export_to(tmp_path / "x.csv")
-    assert (tmp_path / "x.csv").read_text().startswith("Test Group (Free Run),,1: APOS,,")
-    monkeypatch.setitem(sys.modules, "asammdf", None)
-    with pytest.raises(Mdf4Unavailable):
-        w.export_to(tmp_path / "x.MF4")
-
-
 def test_with_asammdf_the_file_reads_back(tmp_path):
     asammdf = pytest.importorskip("asammdf")
     path = export_mdf4(scope(), tmp_path / "x.mf4")

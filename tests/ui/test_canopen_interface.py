@@ -7,11 +7,14 @@ from __future__ import annotations
 import os
 import signal
 
+import pytest
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QMessageBox
 
 from tests.comms.drive_process import drive_process
 from tests.ui.test_interfaces import answer_dialog, click_ok, execute, type_into
+
+pytestmark = pytest.mark.wire
 
 
 def set_canopen_interface(qtbot, window, port, first=1, last=3):

@@ -14,6 +14,8 @@ from PySide6.QtWidgets import QApplication, QDialogButtonBox
 
 from tests.comms.drive_process import DriveProcess, drive_process
 
+pytestmark = pytest.mark.wire
+
 
 def answer_dialog(qtbot, handle):
     """Run `handle(dialog)` on the next modal dialog, once it is shown (the action's exec() blocks until then). When
@@ -191,6 +193,7 @@ def test_a_link_timeout_stops_the_program_on_the_drive_and_the_ide_says_so(windo
             proxy.close()
 
 
+@pytest.mark.slow
 def test_the_window_stays_responsive_while_a_slow_line_answers(window, qtbot):
     """A drive on a 2400-baud line needs about a second to answer a status request: the window keeps handling its
     events meanwhile (a 20 ms timer keeps firing), and the status still arrives (the status bar follows the
@@ -218,6 +221,7 @@ def test_the_window_stays_responsive_while_a_slow_line_answers(window, qtbot):
         assert len(ticks) > 20 and max(gaps) < 0.5, f"the window stood still {max(gaps):.2f} s"
 
 
+@pytest.mark.slow
 def test_close_interface_while_the_status_is_on_a_slow_line(window, qtbot):
     """Close Interface (DG 2548-2550) while the window's first status request is still on a 2400-baud line: the
     status thread ends, the answer of the closed link never reaches the window, and closing is not reported as a
