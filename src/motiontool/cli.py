@@ -27,7 +27,7 @@ def _cmd_params(args: argparse.Namespace) -> int:
         found = set(db.find(args.find))
         rows = [p for p in rows if p in found]
     if args.link or args.get or args.set:  # live values from a controller
-        from motiontool.headless import params_on_link
+        from motiontool.headless_params import params_on_link
 
         return params_on_link(args.link, args.get, args.set, rows)
     for parameter in rows:
@@ -59,7 +59,8 @@ def _cmd_run(args: argparse.Namespace) -> int:
     options = RunOptions(seconds=args.seconds, settings=args.set, inputs=args.input, include_dirs=args.include,
                          trace=args.trace, signals=[s for s in args.signals.split(",") if s.strip()],
                          trace_interval_ms=args.interval, record=args.record, realtime=args.realtime,
-                         config=args.config, nodes=args.node, master_node=args.master_node, link=args.link)
+                         config=args.config, nodes=args.node, master_node=args.master_node, link=args.link,
+                         timeout=args.timeout)
     if args.master_node is not None and not args.node:
         print("motiontool run: --master-node needs --node (several controllers)", file=sys.stderr)
         return 1
@@ -154,6 +155,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--record", type=Path, metavar="OUT.csv", help="write every TESTSETP recording as CSV")
     p.add_argument("--realtime", action="store_true", help="pace virtual time at real time")
     _add_link_option(p, "--seconds then counts the controller's own time")
+    number_option(p, "--timeout", lo=0, hi=MAX_RUN_SECONDS, default=30.0, metavar="S",
+                  help="with --link: how long a lost connection may last; the run waits for the link, says so on "
+                       "stderr and goes on (default 30 s, 0: end the run at once)")
     p.set_defaults(func=_cmd_run)
 
     from motiontool.comms.drive.command import add_parser as add_drive_parser

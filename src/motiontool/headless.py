@@ -17,7 +17,7 @@ from motiontool import cliargs
 from motiontool.aposs.driver import compile_source
 from motiontool.cameditor.transfer import download_config
 from motiontool.cameditor.zbc import ConfigError, read_config
-from motiontool.cliargs import PARAMETER_VALUE, BadNumber, node_id, parse_input, parse_setting, shown, whole
+from motiontool.cliargs import BadNumber, node_id, parse_input, parse_setting, shown
 from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.eventorder import TimeOrder
 from motiontool.comms.links import LinkSpecError, parse_link_spec
@@ -47,6 +47,7 @@ class RunOptions:
     nodes: list[str] = field(default_factory=list)          # ID:PROGRAM.m: several controllers (run_nodes)
     master_node: int | None = None                          # whose PULSVEL is everyone's master (default lowest)
     link: str | None = None                                 # --link SPEC (comms/links.py); None = the simulator
+    timeout: float = 30.0                                   # --timeout: how long a lost link may pause the run
 
 
 
@@ -111,6 +112,8 @@ def check_options(path: Path | None, options: RunOptions, err) -> bool:
         parse_link_spec(options.link or "sim")  # its address; the options are read when it opens (LinkSpecError)
     except (BadNumber, LinkSpecError) as exc:
         problems.append(str(exc))
+    if not (math.isfinite(options.timeout) and 0 <= options.timeout <= MAX_SECONDS):
+        problems.append(f"--timeout {options.timeout:g}: give a time in seconds, from 0 to {MAX_SECONDS}")
     if not (math.isfinite(options.seconds) and 0 < options.seconds <= MAX_SECONDS):
         problems.append(f"--seconds {options.seconds:g}: give a time in seconds, above 0 and at most {MAX_SECONDS}")
     if options.trace_interval_ms < 1:
@@ -270,7 +273,7 @@ def run_program(path: Path | None, options: RunOptions, out: TextIO | None = Non
     if image is None or not loaded:
         return EXIT_COMPILE
     try:
-        link = open_run_link(options.link, options.realtime)
+        link = open_run_link(options.link, options.realtime, patience_s=options.timeout)
     except LinkError as exc:
         print(f"motiontool run: {exc}", file=err)
         return EXIT_REFUSED if isinstance(exc, LinkSpecError) else EXIT_CONTROLLER
@@ -323,15 +326,19 @@ def run_program(path: Path | None, options: RunOptions, out: TextIO | None = Non
     return EXIT_CONTROLLER if state["error"] else EXIT_OK
 
 
-def open_run_link(spec: str | None, realtime: bool = False, node: int | None = None):
+def open_run_link(spec: str | None, realtime: bool = False, node: int | None = None, patience_s: float = 0.0):
     """The controller of a run: the embedded simulator (virtual time unless `realtime`) or `--link SPEC`, with
-    `node` as its address when given."""
+    `node` as its address when given. A wire link waits up to `patience_s` for a lost connection to come back
+    (`--timeout`): a stalled drive pauses the run instead of ending it (decision F30)."""
     from motiontool.comms.links import open_link
 
     parsed = parse_link_spec(spec or "sim")
     if parsed.scheme == "sim" and not parsed.options:
         return EmbeddedLink(realtime_factor=1.0 if realtime else None)
-    return open_link(replace(parsed, node=node) if node is not None else parsed)
+    link = open_link(replace(parsed, node=node) if node is not None else parsed)
+    if hasattr(link, "patience_s"):
+        link.patience_s = patience_s
+    return link
 
 
 def run_until_stopped(links: list, options: RunOptions, time_base: int, output: PrintOutput,
@@ -478,7 +485,9 @@ def run_nodes(path: Path | None, options: RunOptions, out: TextIO | None = None,
 
     def listener(n: int):
         def on_event(event: LinkEvent) -> None:
-            if event.kind in ("print", "error", "message", "connection"):
+            if event.kind == "connection":   # said while the run waits for the link, not held until it is back
+                print(f"motiontool run: {event.text}", file=err)
+            elif event.kind in ("print", "error", "message"):
                 order.add(n, event)
             elif event.kind == "program" and event.text == "program error":
                 failed.add(n)
@@ -546,54 +555,9 @@ def _node_links(nodes: list[int], options: RunOptions):
     links: dict = {}
     try:
         for n in nodes:
-            links[n] = open_run_link(options.link, node=n)
+            links[n] = open_run_link(options.link, node=n, patience_s=options.timeout)
     except LinkError:
         for link in links.values():
             link.close()
         raise
     return links, lambda: [link.close() for link in links.values()]
-
-
-def params_on_link(spec: str | None, gets: list[str], sets: list[str], rows, out: TextIO | None = None,
-                   err: TextIO | None = None) -> int:
-    """`motiontool params --link SPEC [--set KEY=VALUE]… [--get KEY]…`: writes first (each read back), then reads;
-    without --get/--set every parameter of `rows` is read. One line per parameter: `32-60 KPROP 50` (the raw
-    value the link carries). Exit 0, or 1 after the first refusal (stderr names the parameter)."""
-    from motiontool.paramdb import ParameterError, database
-
-    out, err = out or sys.stdout, err or sys.stderr  # looked up now: a caller may have redirected them
-    db = database()
-    try:
-        link = open_run_link(spec)
-    except LinkError as exc:
-        print(f"motiontool params: {exc}", file=err)
-        return 1
-    try:
-        for setting in sets:
-            key, _, value = setting.partition("=")
-            if not value:
-                raise LinkError(f"--set needs KEY=VALUE with a whole number, got '{shown(setting)}'")
-            try:
-                p = db.get(key.strip())
-                number = whole(value, f"--set {key.strip()}", *PARAMETER_VALUE, hex=True, sep="=")
-            except ParameterError as exc:
-                raise LinkError(f"--set {setting}: {exc}") from None
-            except BadNumber as exc:
-                raise LinkError(str(exc)) from None
-            link.write_parameter(p.number, number)
-            print(f"{p.label} {link.read_parameter(p.number)}", file=out)
-        for key in gets:
-            try:
-                p = db.get(key.strip())
-            except ParameterError as exc:
-                raise LinkError(f"--get {key}: {exc}") from None
-            print(f"{p.label} {link.read_parameter(p.number)}", file=out)
-        if not gets and not sets:
-            for p in rows:
-                print(f"{p.label} {link.read_parameter(p.number)}", file=out)
-    except LinkError as exc:
-        print(f"motiontool params: {exc}", file=err)
-        return 1
-    finally:
-        link.close()
-    return 0

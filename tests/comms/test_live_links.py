@@ -5,6 +5,9 @@ reading a CANopen node leaves its NMT state and heartbeat time as they were."""
 from __future__ import annotations
 
 import io
+import os
+import signal
+import threading
 import time
 
 import pytest
@@ -58,3 +61,40 @@ def test_a_drive_started_with_a_program_gives_its_backlog_to_nobody(tmp_path):
                 link.close()
             time.sleep(0.1)
         assert run(later, RunOptions(seconds=1, link=drive.url + "#1")) == (0, "mine\n", "")
+
+
+PAUSED = "i = 0\nWHILE i < 20 DO\n  DELAY 500\n  i = i + 1\n  PRINT \"line \", i\nENDWHILE\n"
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("clock, listen", [("virtual", "fc:socket://127.0.0.1:0"), ("realtime", CANOPEN)],
+                         ids=["fc-virtual", "canopen-realtime"])
+def test_a_drive_stopped_for_seconds_is_a_pause_of_the_run(tmp_path, clock, listen):
+    """Issue 24 item 2: SIGSTOP of the drive for ~3 s during `run --link`, then SIGCONT: the run waits, says so on
+    stderr, and ends with exit 0 and every line the embedded run prints. Before, FC ended the run with exit 2 (the
+    link gave up after its retries) and CANopen failed every request while the heartbeat was missing."""
+    program = tmp_path / "p.m"
+    program.write_text(PAUSED)
+    embedded = run(program, RunOptions(seconds=30))
+    assert embedded[0] == 0 and embedded[1].count("\n") == 20
+    with drive_process("--clock", clock, "--node", "1", listen=listen) as drive:
+        out, err = io.StringIO(), io.StringIO()
+        result = []
+        runner = threading.Thread(target=lambda: result.append(run_program(
+            program, RunOptions(seconds=30, link=drive.url + "#1", timeout=60), out, err)))
+        runner.start()
+        deadline = time.monotonic() + 120
+        while "line 2\n" not in out.getvalue() and runner.is_alive() and time.monotonic() < deadline:
+            time.sleep(0.005)
+        assert runner.is_alive(), (out.getvalue(), err.getvalue())
+        os.kill(drive.proc.pid, signal.SIGSTOP)
+        try:
+            time.sleep(3)
+        finally:
+            os.kill(drive.proc.pid, signal.SIGCONT)
+        runner.join(180)
+        assert not runner.is_alive()
+    assert (result[0], out.getvalue()) == embedded[:2], err.getvalue()
+    lines = err.getvalue().splitlines()
+    assert lines and lines[0].startswith("motiontool run: lost connection to ") and "waiting up to 60 s" in lines[0]
+    assert lines[-1].startswith("motiontool run: connection to ") and lines[-1].endswith(" restored")

@@ -6,7 +6,8 @@ else is here: request ids and the session, decoding answers, and fetching events
 
 Events are polled (a bus master is never called back): while anything subscribes, a poller thread asks for the
 events after the last one it saw, every `poll_interval_s` or at once while the controller says more are waiting;
-while the connection is lost it keeps trying, and `alive` comes back with the first answer.
+while the connection is lost it keeps trying, and `alive` comes back with the first answer. With `patience_s`
+(`motiontool run --timeout`) a request waits that long for a lost connection to come back (`patiently`).
 `flush_events()` fetches what is waiting now (the CLI calls it before it reads the status, so output keeps its
 order). Events are published in sequence order, never twice; events the controller had to drop are reported
 as a ``message`` event. A link sees the events of its own session only: its first request (or subscription)
@@ -20,6 +21,7 @@ from __future__ import annotations
 import contextlib
 import random
 import threading
+import time
 from collections.abc import Callable
 from typing import Any
 
@@ -48,6 +50,8 @@ class RemoteLink(Link):
         self._epoch: int | None = None
         self._closed = threading.Event()
         self._lost = False
+        self._lost_since: float | None = None
+        self.patience_s = 0.0                       # how long a lost connection may last before requests fail
         self._poller: threading.Thread | None = None
         self._identity: dict | None = None
 
@@ -61,17 +65,47 @@ class RemoteLink(Link):
             raise ConnectionLost("the link is closed")
         if self._epoch is None and request.op != "events":
             self._mark_session()
-        with self._bus:
-            try:
-                answer = self._exchange(encode_request(request, self.session))
-            except ConnectionLost as exc:
-                self._set_connection(lost=True, text=f"Lost connection: {exc}")
-                raise
-        self._set_connection(lost=False)
-        response = decode_response(answer)
+        message = encode_request(request, self.session)   # a repeat is the same (session, id): never applied twice
+
+        def exchange():
+            with self._bus:
+                return self._exchange(message)
+        response = decode_response(self.patiently(exchange))
         if response.id != request.id and response.ok:
             raise LinkError(f"answer to request {response.id} where {request.id} was expected")
         return response.result()
+
+    def patiently(self, action: Callable[[], Any]) -> Any:
+        """Run `action` (one exchange with the controller); a lost connection marks the link lost and, with
+        `patience_s`, is a pause: the same action is tried again until it gets through or the link has been lost
+        that long (one deadline for every thread), then ConnectionLost. A transport's own retries see short
+        gaps; this sees a drive that stalls for seconds (decision F30)."""
+        while True:
+            try:
+                result = action()
+            except ConnectionLost as exc:
+                self._set_connection(lost=True, text=self.lost_text(str(exc)))
+                since = self._lost_since or time.monotonic()
+                left = since + self.patience_s - time.monotonic()
+                if left <= 0 or self._closed.is_set():
+                    if self.patience_s > 0:
+                        raise ConnectionLost(f"{self.description} did not come back within {self.patience_s:g} s: "
+                                             f"{exc}") from None
+                    raise
+                self._closed.wait(min(LOST_RETRY_S, left))
+                continue
+            self._set_connection(lost=False)
+            return result
+
+    def lost_text(self, reason: str) -> str:
+        if self.patience_s > 0:
+            return f"lost connection to {self.description}, waiting up to {self.patience_s:g} s ({reason})"
+        return f"Lost connection: {reason}"
+
+    def restored_text(self, why: str = "") -> str:
+        if self.patience_s > 0:
+            return f"connection to {self.description} restored"
+        return f"Connection restored ({why})" if why else "Connection restored"
 
     def _set_connection(self, *, lost: bool, text: str = "") -> None:
         """Mark the link lost or restored; a `connection` event says so once per change. A transport whose line
@@ -79,7 +113,9 @@ class RemoteLink(Link):
         if lost == self._lost:
             return
         self._lost = lost
-        self._publish(LinkEvent("connection", 0, text or ("Lost connection" if lost else "Connection restored")))
+        self._lost_since = time.monotonic() if lost else None
+        self._publish(LinkEvent("connection", 0, text or (self.lost_text("no answer") if lost
+                                                          else self.restored_text())))
 
     def identify(self) -> dict:
         if self._identity is None:

@@ -112,7 +112,7 @@ class CanopenLink(RemoteLink):
     def _sdo(self, action):
         """Run an SDO action; a missing answer is ConnectionLost, an abort a LinkError with the controller's
         error number where there is one."""
-        if self._lost:
+        if self._lost and not self._virtual_clock():   # on a virtual clock no heartbeat says it is back: ask
             raise ConnectionLost(f"no heartbeat from CANopen node {self.node_id}")
         with self._sdo_lock:
             try:
@@ -241,8 +241,8 @@ class CanopenLink(RemoteLink):
             beat = self._last_beat
             silent = beat is None or time.monotonic() - beat > self.consumer_ms / 1000
             if not self._lost and silent and beat is not None:
-                self._set_connection(lost=True, text=f"Lost connection: no heartbeat from CANopen node "
-                                                     f"{self.node_id} for {self.consumer_ms} ms")
+                self._set_connection(lost=True, text=self.lost_text(f"no heartbeat from CANopen node "
+                                                                    f"{self.node_id} for {self.consumer_ms} ms"))
             elif self._lost and not silent:
                 self._restore("heartbeats again")
             elif self._lost and self.network.notifier.exception is not None:
@@ -272,7 +272,8 @@ class CanopenLink(RemoteLink):
             self._lost, self._rebooted = lost, rebooted
             return
         self._lost = lost
-        self._set_connection(lost=False, text=f"Connection to CANopen node {self.node_id} restored ({why})")
+        self._set_connection(lost=False, text=self.restored_text(why) if self.patience_s > 0 else
+                             f"Connection to CANopen node {self.node_id} restored ({why})")
 
     def close(self) -> None:
         if not self._closed.is_set() and not self._lost and self.stream.running:
@@ -325,7 +326,8 @@ def open_canopen(spec: LinkSpec) -> CanopenLink:
 def scan_spec(spec: LinkSpec, ids) -> list[int]:
     """The IDE's scan range (comms/links.py scan_controllers): nodes answering an SDO request for 0x1000."""
     interface, _, channel = spec.target.partition(":")
-    return scan(interface, channel, [n for n in ids if 1 <= n <= 127], bitrate=spec.option("bitrate", None, int, 10_000, 1_000_000))
+    return scan(interface, channel, [n for n in ids if 1 <= n <= 127],
+                bitrate=spec.option("bitrate", None, int, 10_000, 1_000_000))
 
 
 register_link_scheme("canopen", open_canopen, "canopen:INTERFACE:CHANNEL[#NODE]",

@@ -133,7 +133,10 @@ class FcBus:
         reply_bytes = MAX_TEXT + 10 if telegram.text is not None else LGE_PARAMETER + 2
         retries = self.settings.retries if retries is None else retries
         timeout_s = self.settings.timeout_s if timeout_s is None else timeout_s
-        wait = timeout_s + wire_time(len(raw) + reply_bytes, self.settings.baud)
+        # a serial line's own time at its baud rate; a socket (a converter, the virtual drive) has none we know
+        # of, so it notices a silent slave after `timeout_s` a try, not after a 9600-baud line's time (F30)
+        line = wire_time(len(raw) + reply_bytes, self.settings.baud) if self.serial_line else 0.0
+        wait = timeout_s + line
         problem = ""
         with self.lock:
             if self.closed:

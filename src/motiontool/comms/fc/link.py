@@ -82,13 +82,8 @@ class FcLink(RemoteLink):
     def _transact_parameter(self, p: Parameter, ak: int, value: int = 0) -> Telegram:
         if self._closed.is_set():
             raise ConnectionLost("the link is closed")
-        try:
-            reply = self.bus.transact(parameter(self.adr, ak, p.index, value), lambda t: t.text is None and
-                                      t.pke is not None and t.pnu == p.index and t.ak in PARAMETER_ANSWERS)
-        except ConnectionLost as exc:
-            self._set_connection(lost=True, text=f"Lost connection: {exc}")
-            raise
-        self._set_connection(lost=False)
+        reply = self.patiently(lambda: self.bus.transact(parameter(self.adr, ak, p.index, value), lambda t: (
+            t.text is None and t.pke is not None and t.pnu == p.index and t.ak in PARAMETER_ANSWERS)))
         if reply.ak == AK_REFUSED:
             code = reply.pwe & 0xFFFF
             number = {0: 112, 1: 112, 2: 183}.get(code, 0)
