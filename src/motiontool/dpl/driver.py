@@ -13,10 +13,28 @@ from motiontool.dpl import ast
 from motiontool.dpl.check import Symbols, check_program
 from motiontool.dpl.image import MAX_SOURCE_BYTES
 from motiontool.dpl.lexer import tokenize
-from motiontool.dpl.parser import parse
-from motiontool.fileio import read_text
+from motiontool.dpl.parser import MAX_NESTING, parse
+from motiontool.fileio import read_bytes
 
 SUFFIX = ".dpl"
+# The recursive-descent parser spends some 12 frames per parenthesis: 90 of them (under MAX_NESTING) overran
+# Python's default limit of 1000. Python-to-Python calls use no C stack (3.11+), so a higher limit is safe.
+_FRAMES = MAX_NESTING * 16 + 1000
+
+
+def _room_for_nesting() -> None:
+    if sys.getrecursionlimit() < _FRAMES:  # raised once, never lowered: the IDE checks in several threads
+        sys.setrecursionlimit(_FRAMES)
+
+
+def source_text(data: bytes) -> str:
+    """Program bytes as the APOSS compiler reads them (aposs.preprocess.read_source): UTF-8 with or without a
+    BOM, else Latin-1, CRLF and CR line ends as LF."""
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        text = data.decode("latin-1")
+    return text.replace("\r\n", "\n").replace("\r", "\n")
 
 
 @dataclass
@@ -45,15 +63,20 @@ def check_source(text: str | None = None, path: Path | str | None = None) -> Che
     sink = DiagnosticSink()
     if text is None:
         try:
-            text = read_text(label, MAX_SOURCE_BYTES, "DPL program")  # never a device or pipe (decisions R4)
-        except (OSError, UnicodeDecodeError) as exc:
-            message = f"cannot read the file: {exc.strerror or exc}" if isinstance(exc, OSError) else \
-                f"the file is not UTF-8 text (byte offset {exc.start})"
+            text = source_text(read_bytes(label, MAX_SOURCE_BYTES, "DPL program"))  # never a device (R4)
+        except OSError as exc:
+            message = f"cannot read the file: {exc.strerror or exc}"
             return CheckResult(None, None, [Diagnostic("error", message, Location(label, 1, 1))])
+    else:  # text from an editor: a BOM and CR line ends as in a file
+        text = text.removeprefix("\ufeff").replace("\r\n", "\n").replace("\r", "\n")
+    _room_for_nesting()
     try:
         program = parse(tokenize(text, label))
     except CompileError as exc:
         return CheckResult(None, None, [exc.diagnostic], text)
+    except RecursionError:  # only beyond MAX_NESTING levels of something the parser does not count
+        return CheckResult(None, None, [Diagnostic("error", "program nested too deeply", Location(label, 1, 1))],
+                           text)
     try:
         symbols = check_program(program, sink)
     except RecursionError:
