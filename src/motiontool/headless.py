@@ -58,7 +58,7 @@ class PrintOutput:
 
     def __init__(self, stream: TextIO):
         self.stream = stream
-        self.closed = False
+        self.closed = stream is None  # stdout closed (`run … >&-`): Python has no sys.stdout, PRINT goes nowhere
 
     def line(self, text: str) -> None:
         if not self.closed:
