@@ -17,6 +17,7 @@ from motiontool.fileio import atomic_write_bytes, write_error
 from motiontool.ui.compiler_settings import CompilerSettings
 from motiontool.ui.compiler_settings import check as compiler_checks
 from motiontool.ui.controllers import APC_SIM, InterfaceConfig
+from motiontool.ui.link_jobs import wait_off_gui
 
 DEFAULT_CONTROLLER = ("embedded", 1)
 MAX_NOTED_ERRORS = 1000  # a controller keeps its last 50; this bounds a window that runs for days
@@ -192,6 +193,8 @@ class Development:
                 image = DplImage(self.w.current_editor().property("path") or "Untitled.dpl", outcome.result.source)
                 symbols = outcome.result.symbols
                 self.w.debugger.watch.set_variables(sorted(symbols.variables), sorted(symbols.arrays.items()))
+            if isinstance(outcome.result, CompileResult) and not self._arrays_fit(link, image, ask=ask):
+                return False
             stack = self.compiler_settings().stack_size if isinstance(outcome.result, CompileResult) else None
             link.download(image.to_bytes(), name=Path(image.name).name, stack_size=stack)
             link.start()
@@ -202,6 +205,34 @@ class Development:
             return False
         self.w.messages.ide(f"Executing {Path(image.name).name} on controller {self.w.bridge.controller_id}")
         return True
+
+    def _arrays_fit(self, link, image, *, ask: bool) -> bool:
+        """The controller keeps its DIM arrays for every program and a size never changes (CR 1042-1049), so a
+        program whose DIM differs from an earlier one's stops with error 176 (170 when it skips one) before its
+        first statement, and the error stays pending. Execute does not delete arrays behind the user's back (a
+        program may rely on them, as sample 13 does; DG 2380-2391 names no such step): it says what clashes and
+        offers Reset ▸ Arrays first (decision I20)."""
+        if not image.dims:
+            return True
+        arrays = wait_off_gui(lambda: link.call("list_arrays"))
+        clash = dim_clash(arrays, [(v.name, v.dims) for v in image.dims])
+        if clash is None or not ask:
+            return True
+        box = QMessageBox(QMessageBox.Icon.Question, "Execute", f"{clash}\n\nThe controller keeps DIM arrays "
+                          "for all programs and an array's size cannot change, so the program would stop with "
+                          "error 176 \"Array size wrong\". Delete the controller's arrays (Controller ▸ Reset ▸ "
+                          "Arrays) and execute?", parent=self.w)
+        reset = box.addButton("Reset Arrays and Execute", QMessageBox.ButtonRole.AcceptRole)
+        anyway = box.addButton("Execute Anyway", QMessageBox.ButtonRole.ActionRole)
+        box.addButton(QMessageBox.StandardButton.Cancel)
+        box.exec()
+        chosen = box.clickedButton()
+        box.deleteLater()
+        if chosen is reset:
+            wait_off_gui(lambda: link.call("reset", what="arrays"))
+            self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: arrays deleted (Reset ▸ Arrays)")
+            return True
+        return chosen is anyway
 
     def _controller_for_language(self) -> bool:
         """Move the window to the simulated APC for a DPL program, and back to the default interface for APOSS."""
@@ -250,3 +281,15 @@ class Development:
             self.w.bridge.link.start()
         except LinkError as exc:
             self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: {exc}")
+
+
+def dim_clash(arrays: list[dict], dims: list[tuple[str, list[int]]]) -> str | None:
+    """What in a program's DIM does not fit the controller's arrays (C:1024-1041: a prefix of the stored arrays
+    with the same sizes, new ones appended), or None."""
+    for k, (name, shape) in enumerate(dims):
+        size = shape[0] * (shape[1] if len(shape) > 1 else 1)
+        if k < len(arrays) and int(arrays[k]["size"]) != size:
+            return (f"This program's DIM {name}{''.join(f'[{d}]' for d in shape)} ({size} elements) is array "
+                    f"{k + 1}, which the controller already has with {arrays[k]['size']} elements "
+                    f"(\"{arrays[k]['name']}\", DIMmed by an earlier program).")
+    return None

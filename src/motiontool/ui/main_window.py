@@ -90,6 +90,10 @@ class MainWindow(QMainWindow):
         from motiontool.ui.toolbar import build_toolbar
 
         self.toolbar = build_toolbar(self)
+        from motiontool.ui.pending_error import PendingError
+
+        self.pending_error = PendingError(self)  # the red "Error N" and Clear Error in the status bar
+        self.pending_error.attach()
         self.bridge.printed_lines.connect(lambda cid, texts: self.messages.controller_lines(cid, texts))
         self.bridge.controller_error.connect(self._controller_error)
         self.bridge.program_event.connect(self._program_event)
@@ -391,10 +395,9 @@ class MainWindow(QMainWindow):
 
     # --- controller ------------------------------------------------------------------------------------------
     def _controller_error(self, time_ms: int, number: int, text: str, line, cid: int) -> None:
-        where = f" (line {line})" if line else ""
-        self._last_error[cid] = (number, text, line)
         self.development.note_error(cid, time_ms, number)  # the Error History names this program (I19)
-        self.messages.controller(cid, f"{text}{where}")
+        line = self.pending_error.report(time_ms, number, text, line, cid)  # with its detail and a hint
+        self._last_error[cid] = (number, text, line)
 
     def _program_event(self, time_ms: int, text: str, cid: int) -> None:
         """A program that ends with an error says which error and where (as `motiontool run` does)."""
@@ -410,9 +413,11 @@ class MainWindow(QMainWindow):
             else ""
         error = f" — error {status.error}" if status.error else ""
         self.controller_label.setText(f"{self.bridge.description}: {state}{line}{error}")
+        self.pending_error.status(status)
         self._update_title()
 
     def _connection_changed(self, state: str) -> None:
+        self.pending_error.status(self.bridge.last_status if state == "connected" else None)
         if state == "lost":
             cid = self.bridge.controller_id
             self.controller_label.setText(f"Controller {cid} ({self.connection.interface_description}): "

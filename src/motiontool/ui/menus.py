@@ -75,6 +75,8 @@ def build_menus(w) -> None:
                                for title, key, _effect in cm.MEMORY_ENTRIES]),
             ("&Reset", None, [(f"{title}...", None, lambda *, k=key: cm.reset(w, k))
                               for title, key, _effect in cm.RESET_ENTRIES]),
+            None, ("Clear &Error", None, lambda: w.pending_error.clear()),
+            ("Res&tart...", None, lambda: w.pending_error.restart()),
             None, ("Error &History...", None, lambda: _error_history(w)),
             ("&Diagnostic Report...", None, lambda: cm.diagnostic_report(w)),
         ]),

@@ -1,7 +1,7 @@
 """The APOSS window's toolbar (DG 2013, ide-spec 1.4): one click for the common commands — the file commands,
-Execute / Break / Continue / Syntax Check, the debugger with Watch Start and Stop, the tools (CAM-Editor, Array
-Editor, Oscilloscope) and Select Controller ("Connect"). The buttons fire the menu's own actions; those with a
-standard icon show it, the others their text."""
+Execute / Break / Continue / Syntax Check / Clear Error, the debugger with Watch Start and Stop, the tools
+(CAM-Editor, Array Editor, Oscilloscope) and Select Controller ("Connect"). The buttons fire the menu's own
+actions; those with a standard icon show it, the others their text."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ SP = QStyle.StandardPixmap
 GROUPS = (
     (("New", SP.SP_FileIcon), ("Open...", SP.SP_DialogOpenButton), ("Save", SP.SP_DialogSaveButton)),
     (("Execute", SP.SP_MediaPlay), ("Break", SP.SP_MediaStop), ("Continue", SP.SP_MediaSeekForward),
-     ("Syntax Check", SP.SP_DialogApplyButton)),
+     ("Syntax Check", SP.SP_DialogApplyButton), ("Clear Error", SP.SP_MessageBoxWarning)),
     (("Prepare Singlestep", None), ("Go", None), ("Singlestep", None), ("End Debug", None), ("Watch Start", None),
      ("Watch Stop", None)),
     (("CAM-Editor", None), ("Array Editor", None), ("Oscilloscope", None)),
