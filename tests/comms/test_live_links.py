@@ -75,13 +75,14 @@ def test_a_drive_stopped_for_seconds_is_a_pause_of_the_run(tmp_path, clock, list
     link gave up after its retries) and CANopen failed every request while the heartbeat was missing."""
     program = tmp_path / "p.m"
     program.write_text(PAUSED)
+    watch = "#1,heartbeat=100" if listen == CANOPEN else "#1"   # CANopen: the watch is asked for (N50)
     embedded = run(program, RunOptions(seconds=30))
     assert embedded[0] == 0 and embedded[1].count("\n") == 20
     with drive_process("--clock", clock, "--node", "1", listen=listen) as drive:
         out, err = io.StringIO(), io.StringIO()
         result = []
         runner = threading.Thread(target=lambda: result.append(run_program(
-            program, RunOptions(seconds=30, link=drive.url + "#1", timeout=60), out, err)))
+            program, RunOptions(seconds=30, link=drive.url + watch, timeout=60), out, err)))
         runner.start()
         deadline = time.monotonic() + 120
         while "line 2\n" not in out.getvalue() and runner.is_alive() and time.monotonic() < deadline:
@@ -98,3 +99,53 @@ def test_a_drive_stopped_for_seconds_is_a_pause_of_the_run(tmp_path, clock, list
     lines = err.getvalue().splitlines()
     assert lines and lines[0].startswith("motiontool run: lost connection to ") and "waiting up to 60 s" in lines[0]
     assert lines[-1].startswith("motiontool run: connection to ") and lines[-1].endswith(" restored")
+
+
+def _bare_client(url: str):
+    """python-can's own slcan client on the drive's adapter: no motiontool code between the test and the node."""
+    import can
+
+    return can.Bus(interface="slcan", channel=url.removeprefix("canopen:slcan:"), sleep_after_open=0)
+
+
+def _ask(bus, request, answer_id: int) -> bytes:
+    bus.send(request)
+    end = time.monotonic() + 10
+    while time.monotonic() < end:
+        msg = bus.recv(0.5)
+        if msg is not None and msg.arbitration_id == answer_id:
+            return bytes(msg.data)
+    raise AssertionError(f"no answer on {answer_id:#x}")
+
+
+def _nmt_state_and_heartbeat(bus) -> tuple[int, int]:
+    import can
+
+    guard = _ask(bus, can.Message(arbitration_id=0x701, is_remote_frame=True, dlc=1, is_extended_id=False), 0x701)
+    sdo = _ask(bus, can.Message(arbitration_id=0x601, data=bytes([0x40, 0x17, 0x10, 0, 0, 0, 0, 0]),
+                                is_extended_id=False), 0x581)
+    return guard[0] & 0x7F, int.from_bytes(sdo[4:6], "little")
+
+
+def test_reading_a_canopen_node_changes_neither_its_nmt_state_nor_its_heartbeat():
+    """Issue 24 item 3: `params --link canopen:… --get KPROP` reads. Before, it sent NMT Start and set 0x1017 to
+    100 ms, and left both so."""
+    import can
+
+    from motiontool.headless_params import params_on_link
+
+    with drive_process("--node", "1", listen=CANOPEN) as drive:
+        bus = _bare_client(drive.url)
+        try:
+            bus.send(can.Message(arbitration_id=0, data=bytes([0x80, 1]), is_extended_id=False))  # pre-operational
+            end = time.monotonic() + 10
+            while _nmt_state_and_heartbeat(bus)[0] != 127 and time.monotonic() < end:
+                time.sleep(0.05)
+            before = _nmt_state_and_heartbeat(bus)
+            assert before == (127, 0)
+            out, err = io.StringIO(), io.StringIO()
+            assert params_on_link(drive.url + "#1", ["KPROP"], [], [], out, err) == 0, err.getvalue()
+            assert out.getvalue() == "32-00 KPROP 30\n" or out.getvalue().endswith(" 30\n")
+            assert _nmt_state_and_heartbeat(bus) == before
+        finally:
+            bus.shutdown()

@@ -6,11 +6,15 @@
 - every other request of the link protocol as a message through the DOMAIN 0x5F00 (write, then read the answer;
   segmented SDO), events by polling as every wire link does (comms/remote.py);
 - Free Run (`stream`) as TxPDOs (freerun.py);
-- NMT start and a heartbeat: the link sets the node's producer time (0x1017) and reports "lost connection" when no
-  heartbeat came for the consumer time, and that the connection is back when heartbeats return (after a boot-up
-  the drive is set up again); a transport that broke is opened again by itself.
+- opening and reading change nothing on the node (decision N50): the link watches the heartbeat the node already
+  produces (0x1017, read) and reports "lost connection" when none came for the consumer time, and that the
+  connection is back when heartbeats return; a node without one is watched by the link's own SDO requests. Only
+  ``heartbeat=MS`` sets 0x1017 (restored on close), and only Free Run sends NMT Start to a node that is not
+  OPERATIONAL (PDOs travel only then; said as a message, the node's state restored on close); after a boot-up the
+  link sets up again what it had asked for; a transport that broke is opened again by itself.
 
-Options: ``heartbeat=MS`` (producer time, default 100), ``consumer=MS`` (default 1000),
+Options: ``heartbeat=MS`` (producer time to set; default: leave the node's), ``consumer=MS`` (default 1000 or five
+producer times),
 ``timeout=S`` (SDO answer timeout, default 1), ``bitrate=BIT/S``, ``eds=PATH`` (default the shipped EDS).
 """
 
@@ -30,13 +34,15 @@ from motiontool.comms.canopen import eds, objects
 from motiontool.comms.canopen.freerun import PdoStream
 from motiontool.comms.canopen.slcan import SlcanSocketBus
 from motiontool.comms.links import LinkSpec, register_link_scheme
-from motiontool.comms.protocol import ConnectionLost, LinkError, Request
+from motiontool.comms.protocol import ConnectionLost, LinkError, LinkEvent, Request
 from motiontool.comms.remote import RemoteLink
 from motiontool.paramdb import ParameterError, database
 
 PARAMETER_BASE = 0x2000
 MESSAGE_TIMEOUT_S = 10.0   # the answer to a link message (it is carried out before the answer)
 CONSUMER_MS = 1000   # default heartbeat consumer time: a loaded machine can hold a drive up for a few hundred ms
+NMT_NAMES = {4: "STOPPED", 5: "OPERATIONAL", 127: "PRE-OPERATIONAL"}
+NMT_BACK = {4: 0x02, 127: 0x80}   # the NMT command that returns a node to a state it was in
 ABORT_ERRORS = {0x06010002: 112, 0x06020000: 112, 0x06090030: 183, 0x06090031: 183, 0x06090032: 183}
 OPTIONS = {"heartbeat", "consumer", "timeout", "bitrate", "eds", "client"}
 
@@ -57,7 +63,7 @@ def open_bus(interface: str, channel: str, bitrate: int | None = None, client: s
 class CanopenLink(RemoteLink):
     kind = "canopen"
 
-    def __init__(self, interface: str, channel: str, node: int = 1, *, heartbeat_ms: int = 100,
+    def __init__(self, interface: str, channel: str, node: int = 1, *, heartbeat_ms: int | None = None,
                  consumer_ms: int | None = None, sdo_timeout_s: float = 1.0, bitrate: int | None = None,
                  eds_path: str | None = None, client: str = "fast"):
         if not 1 <= node <= 127:
@@ -65,7 +71,11 @@ class CanopenLink(RemoteLink):
         self.interface, self.channel, self.node_id = interface, channel, node
         self.bitrate, self.client = bitrate, client
         self.heartbeat_ms = heartbeat_ms
-        self.consumer_ms = consumer_ms or max(CONSUMER_MS, 5 * heartbeat_ms)
+        self._consumer_ms = consumer_ms
+        self.consumer_ms = consumer_ms or CONSUMER_MS
+        self._producer_ms = 0
+        self._saved_heartbeat: bytes | None = None    # 0x1017 before the link set it (restored on close)
+        self._started_from: int | None = None         # the NMT state Free Run's NMT Start left (restored on close)
         self.sdo_timeout_s = sdo_timeout_s
         self.od = canopen.import_od(str(eds_path or eds.eds_path()), node)
         self._sdo_lock = threading.RLock()
@@ -104,10 +114,46 @@ class CanopenLink(RemoteLink):
             self.network.bus.shutdown()
 
     def _configure(self) -> None:
-        """Heartbeat producer time and NMT start (the node may already be operational)."""
+        """What the link was asked to change (a heartbeat time; NMT Start once Free Run needed it), else only
+        reads: the producer time the node has decides how long a silence may be."""
         with self._sdo_lock:
-            self._sdo(lambda sdo: sdo.download(0x1017, 0, self.heartbeat_ms.to_bytes(2, "little")))
-            self.network.send_message(0, bytes([0x01, self.node_id]))
+            current = bytes(self._sdo(lambda sdo: sdo.upload(0x1017, 0)))
+            if self.heartbeat_ms is not None:
+                if self._saved_heartbeat is None:
+                    self._saved_heartbeat = current
+                self._sdo(lambda sdo: sdo.download(0x1017, 0, self.heartbeat_ms.to_bytes(2, "little")))
+            producer = self.heartbeat_ms if self.heartbeat_ms is not None else int.from_bytes(current, "little")
+            self._producer_ms = producer
+            self.consumer_ms = self._consumer_ms or max(CONSUMER_MS, 5 * producer)
+            if self._started_from is not None:
+                self.network.send_message(0, bytes([0x01, self.node_id]))
+
+    def _nmt_state(self) -> int | None:
+        """The node's NMT state by node guarding (a remote frame on 0x700 + id: it reads, it changes nothing)."""
+        answered = threading.Event()
+        self.remote.nmt.add_heartbeat_callback(lambda state: answered.set())
+        self.network.send_message(0x700 + self.node_id, b"", remote=True)
+        return self._state if answered.wait(max(self.sdo_timeout_s, 0.5)) else None
+
+    def _make_operational(self) -> None:
+        """Free Run's PDOs travel only in OPERATIONAL: start a node that is not, say so, remember to restore it."""
+        state = self._nmt_state()
+        if state in (None, 5):
+            return
+        self._started_from = state
+        self.network.send_message(0, bytes([0x01, self.node_id]))
+        self._publish(LinkEvent("message", 0, f"CANopen node {self.node_id} was {NMT_NAMES.get(state, state)}: "
+                                              "NMT Start for Free Run (PDOs travel only when OPERATIONAL); it goes "
+                                              "back when the link closes"))
+
+    def _restore_node(self) -> None:
+        """Give back what the link changed (CANopen cannot go back to INITIALISING; everything else it can)."""
+        with contextlib.suppress(LinkError):
+            if self._saved_heartbeat is not None:
+                saved = self._saved_heartbeat
+                self._sdo(lambda sdo: sdo.download(0x1017, 0, saved))
+            if self._started_from in NMT_BACK:
+                self.network.send_message(0, bytes([NMT_BACK[self._started_from], self.node_id]))
 
     def _sdo(self, action):
         """Run an SDO action; a missing answer is ConnectionLost, an abort a LinkError with the controller's
@@ -217,6 +263,7 @@ class CanopenLink(RemoteLink):
         with self._sdo_lock:
             try:
                 if signals:
+                    self._make_operational()
                     self.stream.start(signals, interval_ms)
                 else:
                     self.stream.stop()
@@ -236,7 +283,7 @@ class CanopenLink(RemoteLink):
 
     def _watchdog(self) -> None:
         while not self._closed.wait(0.05):
-            if self._virtual_clock():
+            if self._virtual_clock() or not self._producer_ms:   # no heartbeat: its own requests notice a loss
                 continue
             beat = self._last_beat
             silent = beat is None or time.monotonic() - beat > self.consumer_ms / 1000
@@ -276,9 +323,11 @@ class CanopenLink(RemoteLink):
                              f"Connection to CANopen node {self.node_id} restored ({why})")
 
     def close(self) -> None:
-        if not self._closed.is_set() and not self._lost and self.stream.running:
-            with contextlib.suppress(LinkError):
-                self._stream([], 1)
+        if not self._closed.is_set() and not self._lost:
+            if self.stream.running:
+                with contextlib.suppress(LinkError):
+                    self._stream([], 1)
+            self._restore_node()
         super().close()
         self._watch.join(timeout=2.0)
         self._disconnect()
@@ -315,7 +364,7 @@ def open_canopen(spec: LinkSpec) -> CanopenLink:
     if not interface or not channel:
         raise LinkError(f"link '{spec.text}': give canopen:INTERFACE:CHANNEL[#NODE], e.g. "
                         "canopen:slcan:socket://127.0.0.1:4002#1 or canopen:socketcan:can0#3")
-    heartbeat = spec.option("heartbeat", 100, int, 0, 65535)   # 0x1017 is an UNSIGNED16 in ms
+    heartbeat = spec.option("heartbeat", None, int, 0, 65535)   # 0x1017 is an UNSIGNED16 in ms
     return CanopenLink(interface, channel, spec.node or 1, heartbeat_ms=heartbeat,
                        consumer_ms=spec.option("consumer", None, int, 0, 65535),
                        sdo_timeout_s=spec.option("timeout", 1.0, float, 0.001, 60),
