@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import re
 
-from PySide6.QtCore import QObject
+from PySide6.QtCore import QObject, Qt
 from PySide6.QtWidgets import QMessageBox, QToolButton
 
 from motiontool.ui.link_jobs import LinkJobs
@@ -44,6 +44,7 @@ class PendingError(QObject):
         self.indicator.setToolTip("The controller's pending error: click for its details and what clears it")
         self.indicator.clicked.connect(lambda *_: self.show_box())
         self.clear_button = QToolButton()
+        self.clear_button.setToolButtonStyle(Qt.ToolButtonStyle.ToolButtonTextBesideIcon)  # the icon alone is vague
         self.indicator.hide()
         self.clear_button.hide()
 
