@@ -8,7 +8,8 @@
 - Free Run (`stream`) as TxPDOs (freerun.py);
 - opening and reading change nothing on the node (decision N50): the link watches the heartbeat the node already
   produces (0x1017, read) and reports "lost connection" when none came for the consumer time, and that the
-  connection is back when heartbeats return; a node without one is watched by the link's own SDO requests. Only
+  connection is back when heartbeats return; a node without one is guarded (a remote frame every 100 ms) while
+  anything subscribes to the link, else watched by the link's own SDO requests. Only
   ``heartbeat=MS`` sets 0x1017 (restored on close), and only Free Run sends NMT Start to a node that is not
   OPERATIONAL (PDOs travel only then; said as a message, the node's state restored on close); after a boot-up the
   link sets up again what it had asked for; a transport that broke is opened again by itself.
@@ -41,6 +42,7 @@ from motiontool.paramdb import ParameterError, database
 PARAMETER_BASE = 0x2000
 MESSAGE_TIMEOUT_S = 10.0   # the answer to a link message (it is carried out before the answer)
 CONSUMER_MS = 1000   # default heartbeat consumer time: a loaded machine can hold a drive up for a few hundred ms
+GUARD_S = 0.1        # node guarding of a node without a heartbeat, while something watches the link
 NMT_NAMES = {4: "STOPPED", 5: "OPERATIONAL", 127: "PRE-OPERATIONAL"}
 NMT_BACK = {4: 0x02, 127: 0x80}   # the NMT command that returns a node to a state it was in
 ABORT_ERRORS = {0x06010002: 112, 0x06020000: 112, 0x06090030: 183, 0x06090031: 183, 0x06090032: 183}
@@ -74,6 +76,8 @@ class CanopenLink(RemoteLink):
         self._consumer_ms = consumer_ms
         self.consumer_ms = consumer_ms or CONSUMER_MS
         self._producer_ms = 0
+        self._last_guard = 0.0
+        self._beat_seen = threading.Event()          # a heartbeat or guarding answer came (_nmt_state waits)
         self._saved_heartbeat: bytes | None = None    # 0x1017 before the link set it (restored on close)
         self._started_from: int | None = None         # the NMT state Free Run's NMT Start left (restored on close)
         self.sdo_timeout_s = sdo_timeout_s
@@ -130,10 +134,9 @@ class CanopenLink(RemoteLink):
 
     def _nmt_state(self) -> int | None:
         """The node's NMT state by node guarding (a remote frame on 0x700 + id: it reads, it changes nothing)."""
-        answered = threading.Event()
-        self.remote.nmt.add_heartbeat_callback(lambda state: answered.set())
+        self._beat_seen.clear()
         self.network.send_message(0x700 + self.node_id, b"", remote=True)
-        return self._state if answered.wait(max(self.sdo_timeout_s, 0.5)) else None
+        return self._state if self._beat_seen.wait(max(self.sdo_timeout_s, 0.5)) else None
 
     def _make_operational(self) -> None:
         """Free Run's PDOs travel only in OPERATIONAL: start a node that is not, say so, remember to restore it."""
@@ -276,6 +279,7 @@ class CanopenLink(RemoteLink):
     def _on_heartbeat(self, state: int) -> None:
         known = self._last_beat is not None
         self._last_beat, self._state = time.monotonic(), state
+        self._beat_seen.set()
         if state == 0 and known:       # a boot-up of a node we knew: the drive lost what the link set up
             self._rebooted = True
             if not self._lost:
@@ -283,8 +287,12 @@ class CanopenLink(RemoteLink):
 
     def _watchdog(self) -> None:
         while not self._closed.wait(0.05):
-            if self._virtual_clock() or not self._producer_ms:   # no heartbeat: its own requests notice a loss
+            if self._virtual_clock():
                 continue
+            if not self._producer_ms:      # no heartbeat of its own: a watching master (one that subscribes, as
+                if not self._subscribers:  # the IDE) asks by node guarding, which changes nothing on the node
+                    continue
+                self._guard()
             beat = self._last_beat
             silent = beat is None or time.monotonic() - beat > self.consumer_ms / 1000
             if not self._lost and silent and beat is not None:
@@ -294,6 +302,13 @@ class CanopenLink(RemoteLink):
                 self._restore("heartbeats again")
             elif self._lost and self.network.notifier.exception is not None:
                 self._reopen()
+
+    def _guard(self) -> None:
+        now = time.monotonic()
+        if now - self._last_guard >= GUARD_S:
+            self._last_guard = now
+            with contextlib.suppress(can.CanError, OSError):
+                self.network.send_message(0x700 + self.node_id, b"", remote=True)
 
     def _virtual_clock(self) -> bool:
         return bool(self._identity) and self._identity.get("clock") == "virtual"
