@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import sys
 from typing import TextIO
 
@@ -9,13 +10,33 @@ from motiontool.cliargs import PARAMETER_VALUE, BadNumber, shown, whole
 from motiontool.comms.protocol import LinkError
 from motiontool.headless import open_run_link
 
+_LCP_RE = re.compile(r"([0-9]{1,2})-([0-9]{1,2})")
+
+
+def _row(db, key: str, option: str) -> tuple[str, str]:
+    """(what the link is asked for, the row's label) for a --get/--set KEY: an MCO 305 parameter from the database
+    (`32-60 KPROP`), else an FC 300 parameter by its LCP number (`4-13`, decision K124, docs/fc300.md) which only the
+    controller can know: the link's refusal names the key then. headless modules do not import the kernel."""
+    from motiontool.paramdb import ParameterError
+
+    key = key.strip()
+    try:
+        p = db.get(key)
+    except ParameterError as exc:
+        lcp = _LCP_RE.fullmatch(key)
+        if lcp is None:
+            raise LinkError(f"{option} {shown(key)}: {exc}") from None
+        label = f"{int(lcp[1])}-{int(lcp[2]):02d}"
+        return label, label
+    return p.number, p.label
+
 
 def params_on_link(spec: str | None, gets: list[str], sets: list[str], rows, out: TextIO | None = None,
                    err: TextIO | None = None) -> int:
     """`motiontool params --link SPEC [--set KEY=VALUE]… [--get KEY]…`: writes first (each read back), then reads;
     without --get/--set every parameter of `rows` is read. One line per parameter: `32-60 KPROP 50` (the raw
     value the link carries). Exit 0, or 1 after the first refusal (stderr names the parameter)."""
-    from motiontool.paramdb import ParameterError, database
+    from motiontool.paramdb import database
 
     out, err = out or sys.stdout, err or sys.stderr  # looked up now: a caller may have redirected them
     db = database()
@@ -29,21 +50,16 @@ def params_on_link(spec: str | None, gets: list[str], sets: list[str], rows, out
             key, _, value = setting.partition("=")
             if not value:
                 raise LinkError(f"--set needs KEY=VALUE with a whole number, got '{shown(setting)}'")
+            target, label = _row(db, key, "--set")
             try:
-                p = db.get(key.strip())
                 number = whole(value, f"--set {key.strip()}", *PARAMETER_VALUE, hex=True, sep="=")
-            except ParameterError as exc:
-                raise LinkError(f"--set {setting}: {exc}") from None
             except BadNumber as exc:
                 raise LinkError(str(exc)) from None
-            link.write_parameter(p.number, number)
-            print(f"{p.label} {link.read_parameter(p.number)}", file=out)
+            _ask(link.write_parameter, f"--set {label}", target, number)
+            print(f"{label} {_ask(link.read_parameter, f'--set {label}', target)}", file=out)
         for key in gets:
-            try:
-                p = db.get(key.strip())
-            except ParameterError as exc:
-                raise LinkError(f"--get {key}: {exc}") from None
-            print(f"{p.label} {link.read_parameter(p.number)}", file=out)
+            target, label = _row(db, key, "--get")
+            print(f"{label} {_ask(link.read_parameter, f'--get {label}', target)}", file=out)
         if not gets and not sets:
             for p in rows:
                 print(f"{p.label} {link.read_parameter(p.number)}", file=out)
@@ -53,3 +69,11 @@ def params_on_link(spec: str | None, gets: list[str], sets: list[str], rows, out
     finally:
         link.close()
     return 0
+
+
+def _ask(request, option: str, *args):
+    """A parameter request on the link; its refusal names the key (`--get 4-99: error 112: Unknown param. …`)."""
+    try:
+        return request(*args)
+    except LinkError as exc:
+        raise LinkError(f"{option}: {exc}") from None
