@@ -80,3 +80,18 @@ def test_error_history_is_cleared_by_clear(link):
     assert [e["number"] for e in link.call("error_history")] == [171]
     link.call("clear_error_history")
     assert link.call("error_history") == []
+
+
+def test_power_on_clears_the_error_history(link):
+    """DG 2996: "The list is cleared each time that the controller is powered on." Controller ▸ Restart is the
+    link's power_on; an error of the Autostart program after it is the new list's first entry."""
+    link.download(image("DIM a[2]\nx = a[5]\n"), number=1, name="BAD")
+    link.start(1)
+    link.advance(50)
+    assert [e["number"] for e in link.call("error_history")] == [171]
+    link.call("power_on")
+    assert link.call("error_history") == [] and link.status().error == 0
+    link.call("set_autostart", number=1)
+    link.call("power_on")
+    link.advance(50)
+    assert [e["number"] for e in link.call("error_history")] == [171]

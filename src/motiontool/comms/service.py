@@ -203,12 +203,14 @@ class ControllerService:
 
     def op_power_on(self) -> None:
         """Simulated controllers: switch off and on (DG 2699-2788): the program stops, the axis stands,
-        errors are gone, SET values revert; parameters, arrays and saved programs stay; Autostart runs."""
+        errors are gone, SET values revert; parameters, arrays and saved programs stay; Autostart runs. The error
+        history starts empty (DG 2996: "The list is cleared each time that the controller is powered on")."""
         c = self.controller
         if c.program_state in ("running", "break"):
             c.break_program()
         if c.error:
             c.clear_error()
+        c.error_history.clear()  # before Autostart: an error of the autostarted program is the new list's first
         c.program_state = "idle"
         self.recording = None  # a Single Shot recording lives in RAM
         if self.wipe_at_power_on:  # Delete EPROM: the factory settings from this power on (DG 2916-2930)
