@@ -257,3 +257,15 @@ def test_cam_output_depends_only_on_the_master_position(table, steps):
         slave += c.step(step)
         master += step
         assert slave == f(master)
+
+
+def test_delta_seg_limit_and_out_ratio_numerator_clamp():
+    """L3525 "DeltaLimit%: Unsigned 16bit. Negative values will be clamped to zero, values over 65535 will be clamped
+    to 65535"; L3568 "Ratio%: Unsigned 31bit value to set as numerator. Negative values will be clamped at zero."
+    Both then answer 1, "Operation successful" (L3528, L3571; decision A6)."""
+    d = enabled_drive()
+    assert d.APCSetCAMDeltaSegLimit(-7) == 1 and d.read(76) == 0
+    assert d.APCSetCAMDeltaSegLimit(70000) == 1 and d.read(76) == 65535
+    assert d.APCSetCAMDeltaSegLimit(300) == 1 and d.read(76) == 300
+    assert d.APCSetCAMOutRatioNumerator(-1000) == 1 and d.read(80) == 0
+    assert d.APCSetCAMOutRatioNumerator(2500) == 1 and d.read(80) == 2500

@@ -171,3 +171,20 @@ def test_external_references():
     d.APCSetExternalRefPosition(1000)
     d.tick()
     assert d.read(142) == 1000 and d.read(130) == 1000 - d.read(48)
+
+
+@pytest.mark.parametrize(("mode", "key", "sign"), [(2, "1.21", 1), (12, "1.21", -1), (0, "3.22", 1)])
+def test_speed_reference_parameter_shows_the_value_clamped_at_1_06(mode, key, sign):
+    """L2148 "Drive parameter 1.06 clamps the speed reference sent to the drive from the output channel": with
+    #1.06 = 500 rpm and 1100 rpm asked, #1.21 / #3.22 hold what the drive receives, 500 rpm (rpm×10, A46)."""
+    d = ApcDrive()
+    d.params["1.06"] = 500
+    d.APCSetupOutputChannel(mode, 0, 0)
+    d.APCEnableOutputChannel()
+    d.APCSetRunMode(2)
+    d.APCSetSpeedFFwdGain(1000)
+    d.APCSetSpeedSetPoint(rpm_to_speed(1100))
+    d.APCSelectReference(2)
+    d.run_ms(300)
+    assert abs(d.read(135)) > rpm_to_speed(1000)          # the APC still asks for more than #1.06
+    assert d.params[key] == sign * 5000                    # mode 12 inverts (L2140)

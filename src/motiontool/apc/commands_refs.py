@@ -89,9 +89,8 @@ class ReferenceCommands(Conversions):
         return OK
 
     def APCSetCAMDeltaSegLimit(self, DeltaLimit: int) -> int:
-        if not _in(DeltaLimit, 0, 65535):
-            return INVALID
-        self.cam.seg_limit = DeltaLimit
+        """Clamped to 0..65535 (L3525), then "Operation successful" (decision A6)."""
+        self.cam.seg_limit = max(0, min(65535, DeltaLimit))
         return OK
 
     def APCSetCAMInterpolationMode(self, InterpolationMode: int) -> int:
@@ -101,9 +100,8 @@ class ReferenceCommands(Conversions):
         return OK
 
     def APCSetCAMOutRatioNumerator(self, Ratio: int) -> int:
-        if not _in(Ratio, 0, INT32_MAX):
-            return INVALID
-        self.cam.ratio.numerator = Ratio
+        """Negative values clamped at zero (L3568), then "Operation successful" (decision A6)."""
+        self.cam.ratio.numerator = max(0, min(INT32_MAX, Ratio))
         return OK
 
     def APCSetCAMOutRatioDenominator(self, Ratio: int) -> int:

@@ -310,25 +310,33 @@ class KernelCore:
         channel = self.channel
         speed = self.loop.output if self.enabled else 0
         values = self.params.values
-        if channel.enabled and channel.mode == 2:          # the examples' mode: #1.21 and the speed shortcut
-            channel.sent = speed                           # #1.21 shows it (read on demand, _channel_parameter)
-        else:
-            shortcut, target, value = channel.latch(speed)
-            if target is not None:
-                values[target] = value
-            if shortcut is None:   # no speed shortcut: the drive runs on its selected speed parameter (rpm×10)
-                key = (3, 22) if values.get((3, 23), 0) == 1 else (1, 21)
-                shortcut = rpm_to_speed(values.get(key, 0)) // 10
-            speed = shortcut
         rpm = values.get((1, 6), 3000)
         if rpm != self._limit_rpm:
             self._limit_rpm, self._limit = rpm, rpm_to_speed(rpm)
         limit = self._limit
-        if speed > limit or speed < -limit:
-            if values.get((81, 17), 0) == 1:
-                self.trip_drive("Tr44", "output channel over range (#1.06)")
-            speed = limit if speed > 0 else -limit
+        if channel.enabled and channel.mode == 2:          # the examples' mode: #1.21 and the speed shortcut
+            speed = self._clamp_output(speed, limit)
+            channel.sent = speed                           # #1.21 shows it (read on demand, _channel_parameter)
+        else:
+            shortcut, target, value = channel.latch(speed)
+            if shortcut is not None:                       # #1.21 / #3.22 hold the clamped value (L2148, A46)
+                shortcut = self._clamp_output(shortcut, limit)
+                value = speed_to_rpm_x10(shortcut)
+            if target is not None:
+                values[target] = value
+            if shortcut is None:   # no speed shortcut: the drive runs on its selected speed parameter (rpm×10)
+                key = (3, 22) if values.get((3, 23), 0) == 1 else (1, 21)
+                shortcut = self._clamp_output(rpm_to_speed(values.get(key, 0)) // 10, limit)
+            speed = shortcut
         self._demand3, self._demand2, self._demand1 = self._demand2, self._demand1, speed
+
+    def _clamp_output(self, speed: int, limit: int) -> int:
+        """#1.06 clamps the speed reference sent to the drive; Tr44 with #81.17 = 1 (L2148)."""
+        if speed > limit or speed < -limit:
+            if self.params.values.get((81, 17), 0) == 1:
+                self.trip_drive("Tr44", "output channel over range (#1.06)")
+            return limit if speed > 0 else -limit
+        return speed
 
     # --- the kernel ----------------------------------------------------------------------------------------------
     def _kernel(self) -> None:
