@@ -105,6 +105,11 @@ def test_two_outputs_that_are_one_file_are_refused(tmp_path, capsys):
     (["--link", "fc:socket://127.0.0.1:1#\u0662"], ["#\u0662", "address"]),
     (["--link", "sim,realtime=nan"], ["realtime=nan", "from 0 to"]),
     (["--link", "sim,realtime=inf"], ["realtime=inf", "from 0 to"]),
+    (["--timeout", BIG], ["--timeout 999", "(5000 characters)", "from 0 to 864000"]),
+    (["--timeout", "\u0665"], ["--timeout \u0665:", "from 0 to 864000"]),
+    (["--timeout", "nan"], ["--timeout nan:", "from 0 to 864000"]),
+    (["--timeout", "-1"], ["--timeout -1:", "from 0 to 864000"]),
+    (["--timeout", "inf"], ["--timeout inf:", "from 0 to 864000"]),
 ])
 def test_hostile_numbers_in_run_options_are_one_line_errors(tmp_path, capsys, monkeypatch, options, words):
     """5000 digits ended in int()'s ValueError, other scripts' digits were taken ("--seconds ٥" ran 5 s),
