@@ -22,9 +22,9 @@ DEFAULTS: dict[tuple[int, int], int] = {
     (81, 6): 1,       # RS485 mode; 25 CTSync master, 26 slave (L8205)
     (81, 12): 3,      # POS rate: 1 ms (the examples' setting; the module's own default is 0 = disabled)
     (81, 13): 1,
-    (81, 16): 1,      # encoder update every POS task (recommended, L938-946)
+    (81, 16): 1,      # encoder update every POS task (recommended, L938-946; the only rate modelled, A69)
     (81, 17): 0,      # parameter over-range trip (Tr44) off
-    (81, 38): 1,      # APC runtime error trips Tr81 (the basic setup, L4678-4723)
+    (81, 38): 1,      # APC runtime error trips Tr81 (the basic setup, L4678-4723; printed default 0, A69)
 }
 
 
