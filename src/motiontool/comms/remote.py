@@ -159,6 +159,16 @@ class RemoteLink(Link):
             self._last_event = int(value.get("last", self._last_event))
             return bool(value.get("more"))
 
+    def resume(self, previous: Link) -> None:
+        """This link replaces `previous`, lost, to the same controller for the same master (the IDE's Reconnect):
+        the session goes on where the lost link's events stopped, so what the controller said while the line was
+        down (a link timeout's reaction, a program error) is shown now instead of being taken for another
+        master's past. A controller restarted meanwhile is found by the epoch, as on any poll."""
+        if isinstance(previous, RemoteLink) and previous._epoch is not None:
+            with self._events_lock:
+                if self._epoch is None:
+                    self._epoch, self._last_event = previous._epoch, previous._last_event
+
     def _mark_session(self) -> None:
         """This session starts now: the events before it belong to other masters (or to nobody)."""
         with self._events_lock:

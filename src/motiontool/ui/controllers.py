@@ -107,9 +107,12 @@ class ControllerRegistry:
             raise ValueError(f"no controller {controller_id} on the simulated interface")
         link = iface.links.get(controller_id)
         if link is None or not getattr(link, "alive", True):
+            fresh = self._open(config, controller_id)
             if link is not None:
                 link.close()
-            iface.links[controller_id] = self._open(config, controller_id)
+                if hasattr(fresh, "resume"):  # the same master again: its session goes on (comms/remote.py)
+                    fresh.resume(link)
+            iface.links[controller_id] = fresh
             if controller_id not in iface.found:
                 iface.found = sorted({*iface.found, controller_id})
         return iface.links[controller_id]
