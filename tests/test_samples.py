@@ -88,10 +88,13 @@ class Outcome:
     state: str
 
 
-def run_sample(path: Path, header: Header) -> Outcome:
+def run_sample(path: Path, header: Header, uptime_ms: int = 0) -> Outcome:
+    """Run the sample as its header says; `uptime_ms`: the controller's clock (TIME) at the download, i.e. how
+    long it has been up (tests/test_samples_uptime.py). Test-inputs times count from then."""
     result = compile_source(path=path)
     assert result.ok and result.image is not None, [d.format() for d in result.diagnostics]
     link = EmbeddedLink()
+    link.service.controller.time_ms = uptime_ms
     prints: list[str] = []
     errors: list[int] = []
 
@@ -106,7 +109,7 @@ def run_sample(path: Path, header: Header) -> Outcome:
         for name, value in header.settings:
             link.write_parameter(name, value)
         for number, value, at in header.inputs:
-            link.call("schedule_input", number=number, value=value, time_ms=at)
+            link.call("schedule_input", number=number, value=value, time_ms=uptime_ms + at)
         link.download(result.image.to_bytes())
         link.start()
         remaining = int(header.seconds * 1000)

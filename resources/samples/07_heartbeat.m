@@ -16,11 +16,11 @@
 // time. ON TIME fires once, after a delay: here it ends the heartbeat
 // (ON PERIOD 0 switches the period off) after 2 s.
 //
-// The main program and the handler share the variable beats. The main
-// program reads and clears it; if the handler ran between the read and
-// the clear, one beat would be lost. DISABLE PERIOD holds the handler
-// back for those two lines, ENABLE PERIOD lets it run (late, not lost).
+// The main program and the handler share the variable beats: a handler
+// run between its read and clear would lose a beat. DISABLE PERIOD holds
+// the handler back for those two lines; ENABLE PERIOD runs it late, not lost.
 
+t0 = TIME - 1                 // the start (TIME counts from power-up; line 1 runs at start + 1 ms)
 ON PERIOD 100 GOSUB beat      // every 100 ms
 ON TIME 2000 GOSUB stop_beat  // once, 2 s from now
 
@@ -36,7 +36,7 @@ WHILE running DO
     ENABLE PERIOD
     total = total + seen
     // outputs 1-8 as one byte (SDO 0x2202 sub 0x0A); bit 1 = output 1
-    PRINT TIME, " ms: ", seen, " beats, outputs ", SYSVAR[0x0122020A]
+    PRINT TIME - t0, " ms: ", seen, " beats, outputs ", SYSVAR[0x0122020A]
 ENDWHILE
 
 PRINT "heartbeat stopped after ", total + beats, " beats"

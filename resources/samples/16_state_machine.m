@@ -26,6 +26,7 @@
 #define ST_RETURN 3
 #define ST_DONE 4
 
+t0 = TIME - 1                 // the start (TIME counts from power-up; line 1 runs at start + 1 ms)
 VEL 60
 ACC 60
 DEC 60
@@ -37,7 +38,7 @@ WHILE state != ST_DONE DO
     SWITCH (state)
     CASE ST_WAIT_START:
         IF IN 1 THEN
-            PRINT TIME, " ms: start pressed"
+            PRINT TIME - t0, " ms: start pressed"
             state = ST_FEED
             POSA 25000
         ENDIF
@@ -59,7 +60,7 @@ WHILE state != ST_DONE DO
     CASE ST_RETURN:
         IF (AXEND & 1) THEN
             cycles++
-            PRINT TIME, " ms: cycle ", cycles, " complete"
+            PRINT TIME - t0, " ms: cycle ", cycles, " complete"
             IF cycles < 3 THEN
                 state = ST_FEED // next part, no new start needed
                 POSA 25000

@@ -22,6 +22,7 @@
 // arriving during a selective DISABLE INT is lost: keep it short.
 
 DIM lengths[20]
+t0 = TIME - 1                 // the start (TIME counts from power-up; line 1 runs at start + 1 ms)
 ON INT 6 GOSUB front
 ON INT -6 GOSUB back
 
@@ -32,7 +33,7 @@ DEC 100
 CVEL 20                          // 20 % of VELMAX = 20480 qc/s
 CSTART
 
-WHILE TIME < 3000 DO
+WHILE TIME - t0 < 3000 DO
     DISABLE INT
     fresh = count - reported
     ENABLE INT

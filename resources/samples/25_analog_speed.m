@@ -23,6 +23,7 @@
 #define DEAD_BAND 20                // +-0.2 V counts as zero
 #define MAX_SPEED 60                // % of VELMAX
 
+t0 = TIME - 1                 // the start (TIME counts from power-up; line 1 runs at start + 1 ms)
 ON PERIOD 50 GOSUB follow_pot
 ACC 50
 DEC 50
@@ -34,7 +35,7 @@ CSTART
 last = -999
 WHILE IN 1 == 0 DO
     IF speed != last THEN
-        PRINT TIME, " ms: INAD ", raw, " -> CVEL ", speed
+        PRINT TIME - t0, " ms: INAD ", raw, " -> CVEL ", speed
         last = speed
     ENDIF
     DELAY 10

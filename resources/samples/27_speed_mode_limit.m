@@ -19,6 +19,7 @@
 // the range, and the axis may then drive back - only in the direction
 // back into the range. Driving further out raises error 198.
 
+t0 = TIME - 1                 // the start (TIME counts from power-up; line 1 runs at start + 1 ms)
 ON ERROR GOSUB on_error
 SET NEGLIMIT -30000
 SET SWNEGLIMACT 1
@@ -30,7 +31,7 @@ hit = 0
 
 CVEL -30                       // towards the negative limit
 CSTART
-WHILE hit == 0 AND TIME < 5000 DO
+WHILE hit == 0 AND TIME - t0 < 5000 DO
     DELAY 10
 ENDWHILE
 IF hit == 0 THEN

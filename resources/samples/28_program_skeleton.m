@@ -24,7 +24,8 @@
 DIM log[10]
 #pragma NOIMPLICIT
 
-long cycles, paused, fault
+long cycles, paused, fault, t0
+t0 = TIME - 1                 // the start (TIME counts from power-up; line 1 runs at start + 1 ms)
 
 ON ERROR GOSUB on_error
 ON INT 2 GOSUB pause_request        // input 2: operator pause
@@ -45,16 +46,16 @@ main:
     ENDIF
     IF paused THEN
         WAITI 2 OFF                 // resume when the button is released
-        PRINT "resumed at ", TIME, " ms"
+        PRINT "resumed at ", TIME - t0, " ms"
         paused = 0
     ENDIF
     POSA 15000
     POSA 0
     cycles++
     IF cycles <= 10 THEN
-        log[cycles] = TIME           // cycle end times for the Array Editor
+        log[cycles] = TIME - t0      // cycle end times for the Array Editor
     ENDIF
-    PRINT "cycle ", cycles, " done at ", TIME, " ms"
+    PRINT "cycle ", cycles, " done at ", TIME - t0, " ms"
     GOTO main
 
 // --- subprograms -------------------------------------------------------

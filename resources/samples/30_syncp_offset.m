@@ -17,6 +17,7 @@
 // small at constant speed. MOVESYNCORIGIN shifts the relation by a master
 // distance while running, e.g. to correct the register by hand.
 
+t0 = TIME - 1                 // the start (TIME counts from power-up; line 1 runs at start + 1 ms)
 SET SYNCFACTM 1
 SET SYNCFACTS 1
 SET SYNCACCURACY 100     // qc: the "in sync" window
@@ -32,7 +33,7 @@ DELAY 500                // the master is 20000 qc ahead when the slave starts
 SYNCP
 WHILE (SYNCSTAT & 4) == 0 DO
 ENDWHILE
-PRINT "in sync after ", TIME - 500, " ms, SYNCERR ", SYNCERR
+PRINT "in sync after ", TIME - t0 - 500, " ms, SYNCERR ", SYNCERR
 DELAY 1000
 PRINT "CPOS - MAPOS = ", CPOS - MAPOS, ", SYNCERR ", SYNCERR
 MOVESYNCORIGIN 2000      // run 2000 qc ahead of the master
