@@ -10,6 +10,9 @@ invalid UTF-8; for images also the JSON body's values, types and instructions) g
 goes through - written to a file and read from the path. A case passes when the reader returns or raises its own
 error class; an accepted program image must also run for 50 ms on the embedded controller without an internal fault
 (error 199) or a failed request, and an accepted DPL program for 50 ms on the simulated APC. Anything else is a crash.
+Then the hostile shapes mutations do not reach (``hostile_cases``: sizes declared far beyond the data, zlib bombs,
+100/101/5 000 parentheses, a BOM with CRLF) must each end in a one-line refusal naming the file and the limit, or be
+read when valid (``fuzz_files_hostile_cases``, ``fuzz_files_hostile_crashes``).
 
 Prints ``name: value unit`` lines per format (``fuzz_files_zbc_cases``, ``…_crashes``, ``…_slowest``) and in total
 (``fuzz_files_cases``, ``fuzz_files_crashes``, ``fuzz_files_slowest``); goals: 0 crashes, slowest below 2 s. Exit
@@ -21,7 +24,9 @@ tests/aposs/test_image_fuzz.py, which drive them with hypothesis.
 from __future__ import annotations
 
 import argparse
+import base64
 import contextlib
+import functools
 import json
 import random
 import sys
@@ -308,6 +313,100 @@ def check_program(text: str) -> None:
     fuzz_compiler.check_compile(text)
 
 
+# --- hostile shapes (issue 26 item 7; decisions R15-R17) -----------------------------------------------------------
+def deflated_zeros(size: int) -> bytes:
+    """``size`` zero bytes deflated in 1 MiB steps (100 MiB: some 100 KB, a fraction of a second)."""
+    deflate = zlib.compressobj(9)
+    chunk = bytes(1 << 20)
+    parts = [deflate.compress(chunk) for _ in range(size // len(chunk))]
+    return b"".join(parts) + deflate.compress(bytes(size % len(chunk))) + deflate.flush()
+
+
+@functools.cache
+def hostile_cases() -> list[tuple[str, str, bytes, tuple[str, ...] | None]]:
+    """(name, format, file's bytes, words) for the shapes the mutations do not reach: sizes declared far beyond the
+    data, compressed bombs, deep parentheses, a BOM with CRLF. ``words`` are what the one-line refusal must say (the
+    limit; a file's refusal also names its path), None for a file that must be read."""
+    from motiontool.aposs.image import MAGIC, MAX_BODY_BYTES
+    from motiontool.camcurve.model import MAX_ARRAY_ELEMENTS, MAX_INTERVALS
+    from motiontool.dpl.parser import MAX_NESTING
+    from motiontool.scope.zbo import MAX_SAMPLES
+
+    dat, zbc, zbo = SEEDS["dat"][0], SEEDS["zbc"][0], SEEDS["zbo"][0]
+    bomb = base64.b64encode(deflated_zeros(4 << 20)).decode("ascii")  # 4 MiB for 4 values (32 bytes)
+
+    def zbo_with(capacity=None, **data) -> bytes:
+        doc = json.loads(zbo)
+        curve = doc["curves"][0]
+        if capacity is not None:
+            curve["capacity"] = capacity
+        curve["data"].update(data)
+        return json.dumps(doc).encode()
+
+    def dpl(depth: int) -> bytes:
+        return ("Initial {\n    x% = " + "(" * depth + "1" + ")" * depth + "\n}\n").encode()
+
+    count = json.loads(zbo)["curves"][0]["data"]["count"]
+    deeper = (f"nested deeper than {MAX_NESTING} levels",)
+    return [
+        ("dat intervals 10^8", "dat", dat.replace("intervals = 40", "intervals = 100000000").encode(),
+         ("intervals", str(MAX_INTERVALS))),
+        ("dat elements 10^8", "dat", dat.replace("elements = 92", "elements = 100000000").encode(),
+         ("elements", str(MAX_ARRAY_ELEMENTS))),
+        ("zbc intervals 10^8", "zbc", zbc.replace("intervals = 40", "intervals = 100000000").encode(),
+         ("intervals", str(MAX_INTERVALS))),
+        ("zbc size 10^8", "zbc", zbc.replace("size = 4\n", "size = 100000000\n").encode(),
+         ("size", str(MAX_ARRAY_ELEMENTS))),
+        ("zbo capacity 10^9", "zbo", zbo_with(capacity=10**9), ("capacity", str(MAX_SAMPLES))),
+        ("zbo values bomb", "zbo", zbo_with(values=bomb), ("data.values", f"more than the {count} values")),
+        ("zbo time bomb", "zbo", zbo_with(time_ms=bomb), ("data.time_ms", f"more than the {count} values")),
+        ("image body bomb", "image", MAGIC + bytes([1]) + deflated_zeros(MAX_BODY_BYTES + (4 << 20)),
+         (f"more than {MAX_BODY_BYTES} bytes",)),
+        (f"dpl {MAX_NESTING} parentheses", "dpl", dpl(MAX_NESTING), None),
+        (f"dpl {MAX_NESTING + 1} parentheses", "dpl", dpl(MAX_NESTING + 1), deeper),
+        ("dpl 5000 parentheses", "dpl", dpl(5000), deeper),
+        ("dpl BOM and CRLF", "dpl", b"\xef\xbb\xbfInitial {\r\n    x% = 1\r\n}\r\n", None),
+    ]
+
+
+def check_hostile(fmt: str, data: bytes, words: tuple[str, ...] | None, folder: Path) -> None:
+    """A hostile shape ends in one line naming the file (images come as bytes, without one) and the limit, or is
+    read when ``words`` is None; anything else - a traceback, a MemoryError, a wrong message - is a Crash."""
+    def refused(message: str, path: Path | None) -> None:
+        if words is None:
+            raise Crash(f"a valid file was refused: {message}")
+        missing = [w for w in ((str(path),) if path else ()) + words if w not in message]
+        if "\n" in message or missing:
+            raise Crash(f"the refusal {message!r} does not say {missing or 'it in one line'}")
+
+    if fmt == "image":
+        try:
+            ProgramImage.from_bytes(data)
+        except ImageError as exc:
+            refused(str(exc), None)
+            return
+    elif fmt == "dpl":
+        from motiontool.dpl.driver import check_source
+
+        path = folder / "case.dpl"
+        path.write_bytes(data)
+        checked = check_source(path=path)
+        if checked.diagnostics:
+            refused(checked.diagnostics[0].format(), path)
+            return
+    else:
+        read, expected, suffix = _reader(fmt)
+        path = folder / f"case{suffix}"
+        path.write_bytes(data)
+        try:
+            read(path)
+        except expected as exc:
+            refused(str(exc), path)
+            return
+    if words is not None:
+        raise Crash(f"accepted; expected a refusal saying {words}")
+
+
 # --- one case per generator -----------------------------------------------------------------------------------------
 def program_case(r) -> str:
     return r.choice([fuzz_compiler.token_stream, fuzz_compiler.mutated_example, fuzz_compiler.deep_nesting])(r)
@@ -372,13 +471,22 @@ def main(argv: list[str] | None = None) -> int:
             total["cases"] += args.cases
             total["crashes"] += count
             total["slowest"] = max(total["slowest"], slowest)
+        hostile = 0
+        for name, fmt, data, words in hostile_cases():
+            try:
+                check_hostile(fmt, data, words, folder)
+            except Exception as exc:  # noqa: BLE001 - every escape is a finding
+                hostile += 1
+                print(f"\n=== hostile {name}\n{''.join(traceback.format_exception(exc)[-3:])}", file=sys.stderr)
+        print(f"fuzz_files_hostile_cases: {len(hostile_cases())} cases")
+        print(f"fuzz_files_hostile_crashes: {hostile} count")
     print(f"fuzz_files_cases: {total['cases']} cases")
     print(f"fuzz_files_crashes: {total['crashes']} count")
     print(f"fuzz_files_slowest: {total['slowest']:.3f} s")
     for key, (fmt, case, trace) in crashes.items():
         shown = case if isinstance(case, str) else repr(case)
         print(f"\n=== {key}\n{trace}case ({fmt}, {len(case)} chars/bytes): {shown[:2000]!r}", file=sys.stderr)
-    return 1 if crashes else 0
+    return 1 if crashes or hostile else 0
 
 
 def _make(fmt: str, r):

@@ -2,6 +2,8 @@
 is read or refused with the reader's own error, never a crash (issue 18, items 5 and 8). The mutations are those of
 benchmarks/fuzz_files.py (other scripts' digits, 5 000-digit numbers, NaN, invalid UTF-8, truncation, repeated
 lines, ...), driven by hypothesis-drawn bytes so that a failure shrinks.
+The hostile shapes of benchmarks/fuzz_files.py (declared sizes, zlib bombs, deep parentheses, a BOM with CRLF) end
+in a one-line refusal naming the file and the limit (issue 26 item 7).
 
 MOTIONTOOL_FUZZ_FILES sets the number of cases per format (default 100)."""
 
@@ -49,3 +51,13 @@ def test_mutated_dpl_programs_get_diagnostics_and_accepted_ones_run():
             fuzz_files.check_dpl(data, Path(folder))
 
     case()
+
+
+@pytest.mark.parametrize("name", [case[0] for case in fuzz_files.hostile_cases()])
+def test_hostile_shapes_end_in_a_one_line_refusal_naming_the_file_and_the_limit(tmp_path, name):
+    """Issue 26 item 7 (decisions R15-R17): sizes declared far beyond the data (.dat/.zbc 10^8, .zbo capacity 10^9),
+    zlib bombs (a .zbo curve, a program image inflating past its 96 MiB limit), 100, 101 and 5 000 parentheses and a
+    BOM with CRLF in DPL programs are refused in one line naming the file and the limit, or read when valid - never a
+    traceback or a MemoryError. In process: every reader stops at its limit (the image at 96 MiB)."""
+    _, fmt, data, words = next(case for case in fuzz_files.hostile_cases() if case[0] == name)
+    fuzz_files.check_hostile(fmt, data, words, tmp_path)
