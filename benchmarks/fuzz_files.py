@@ -174,6 +174,8 @@ def mutate_image(r, data: bytes) -> bytes:
     if r.randint(0, 9) == 0:  # the container's bytes
         data = bytearray(data)
         for _ in range(r.randint(1, 4)):
+            if not data:  # an earlier edit cut everything: nothing left to edit
+                break
             k = r.randint(0, 2)
             pos = r.randint(0, len(data) - 1)
             if k == 0:
