@@ -1,0 +1,41 @@
+// Title: Stopping at a mark with a jerk-limited ramp: JERKSTOPDIST and JERKFINVEL
+// Shows: JERKSTOPDIST, JERKFINVEL, SET RAMPTYPE, CVEL, CSTART, CSTOP, CPOS, APOS, AVEL
+// Run: motiontool run 34_jerk_stop_distance.m --seconds 10 --set JERKMIN=200
+// Test-settings: JERKMIN=200
+// Test-seconds: 10
+// Expect: after 300 ms: AVEL 10650 qc/s, would end at 15 % of VELMAX
+// Expect: stop at 330383 with a stop distance of 69632
+// Expect: stopped at 400015, 15 qc from the mark
+// Expect-end: ended
+//
+// A conveyor runs in speed mode and must stop with its front edge at a
+// mark, smoothly (RAMPTYPE 2, limited jerk). With a jerk limit the stop
+// ramp is not a simple v^2/2a: JERKSTOPDIST dec says how far a RAMPTYPE 2
+// stop with deceleration dec (in % like DEC) would go from the present
+// motion, whatever ramp type is running. The program watches
+// CPOS + stop distance and starts the stop when it reaches the mark
+// (CPOS, the commanded position: APOS lags it by the tracking error).
+//
+// JERKFINVEL says which speed the axis ends at if its present
+// acceleration is ramped down to zero now: while speeding up that is
+// more than the speed of the moment.
+
+SET RAMPTYPE 2
+VEL 100
+ACC 50
+DEC 50
+mark = 400000
+CVEL 80
+CSTART
+DELAY 300                        // still accelerating
+PRINT "after 300 ms: AVEL ", AVEL, " qc/s, would end at ", JERKFINVEL, " % of VELMAX"
+dist = JERKSTOPDIST 50
+WHILE CPOS + dist < mark DO
+    DELAY 1
+    dist = JERKSTOPDIST 50
+ENDWHILE
+PRINT "stop at ", CPOS, " with a stop distance of ", dist
+CSTOP
+WAITAX
+DELAY 200
+PRINT "stopped at ", APOS, ", ", APOS - mark, " qc from the mark"
