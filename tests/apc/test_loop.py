@@ -111,12 +111,55 @@ def test_over_range_output_trips_tr44_with_81_17():
 
 
 def test_user_output_channel_value():
-    """L4272-4276 mode 4 writes the user value to Menu%.Parameter% at the start of the next period."""
+    """L4259 mode 4: "Data provided by user at the end of the motion engine period is written to Menu%.Parameter%
+    at the start of the next motion engine period": after the sample that latched it the parameter still holds
+    the old value; the next sample writes it before its POS0."""
     d = enabled_drive()
     d.APCSetupOutputChannel(4, 18, 21)
     d.APCWriteOutputChannel(1234)
     d.tick()
-    assert d.params["18.21"] == 1234
+    assert d.params["18.21"] == 0
+    seen = []
+    d.pos0 = lambda: seen.append(d.params["18.21"])
+    d.tick()
+    assert seen == [1234] and d.params["18.21"] == 1234
+
+
+def test_parameter_output_channel_writes_at_the_start_of_the_next_sample():
+    """L2109 "the data written during the n-th POS task will be written to the multi-port RAM at the very start of
+    the n+1th POS task": mode 3 ([135] in rpm×10 to Menu%.Parameter%) and its inverse 13 write in the next
+    sample, and what POS0, POS1 and the world between samples read is the output of the sample before."""
+    for mode, sign in ((3, 1), (13, -1)):
+        d = enabled_drive()
+        d.APCSetupOutputChannel(mode, 18, 22)
+        d.APCSetSpeedSetPoint(rpm_to_speed(600))
+        d.APCSelectReference(2)
+        outputs, pos0, pos1, between = [], [], [], []
+        d.pos0 = lambda d=d, seen=pos0: seen.append(d.params["18.22"])
+
+        def task1(d=d, outputs=outputs, seen=pos1, sign=sign):
+            seen.append(d.params["18.22"])
+            outputs.append(sign * speed_to_rpm_x10(d.read(135)))
+        d.pos1 = task1
+        for _ in range(300):
+            d.tick()
+            between.append(d.params["18.22"])
+        assert pos0 == pos1 == between and pos0[0] == 0 and pos0[1:] == outputs[:-1]
+        assert len(set(outputs)) > 100 and between[-1] == outputs[-2]
+
+
+def test_a_held_speed_reference_reaches_the_drive_as_fast_as_the_shortcut():
+    """L2109: whichever mode, the channel's data reach the drive at the start of the next sample; mode 3 writing
+    #1.21 moves the motor as mode 2 does (the drive follows #1.21; rpm×10 loses a little resolution)."""
+    positions = []
+    for mode, menu, par in ((2, 0, 0), (3, 1, 21)):
+        d = enabled_drive()
+        d.APCSetupOutputChannel(mode, menu, par)
+        d.APCSetSpeedSetPoint(rpm_to_speed(600))
+        d.APCSelectReference(2)
+        d.run_ms(200)
+        positions.append(d.read(48))
+    assert abs(positions[0] - positions[1]) < 0.001 * positions[0]
 
 
 def test_position_offset_shifts_a_locked_axis_by_exactly_x():

@@ -12,7 +12,8 @@ Per sample, at time t_k:
 5. the kernel runs in its run mode: 0 off (not called), 1 disabled (counters and following error only), 2
    enabled — a change to 2 spends one sample disabled first, [4] reports the enable at the end of the kernel
    (L928-930); APCReset costs one disabled sample and pulses [5] (L2432-2444);
-6. POS1 runs; the output channel latches.
+6. POS1 runs; the output channel latches; modes 3 and 4 write their parameter at the start of the next sample,
+   before its POS0 (L2109, L4259).
 
 Resets (Table 4-2, L975-996): the reference integrator to 0 (relative) or its source (absolute) plus [6], the
 feedback integrator to 0 or its source plus [2]; the profile generator output from the feedback integrator and
@@ -62,7 +63,7 @@ class KernelCore:
                  "fb", "pg", "opg", "cam", "loop", "channel", "params", "turns_bits", "pos0", "pos1", "task",
                  "run_mode", "enabled", "reset_status", "_was_enabled", "_reset_request", "reference", "_active",
                  "_ref_last", "offset_select", "stop_mode", "trip", "drive_enabled", "_demand3", "_demand2",
-                 "_demand1", "_limit_rpm", "_limit", "ctsync_received", "ctsync_counts", "ctsync_out")
+                 "_demand1", "_limit_rpm", "_limit", "ctsync_received", "ctsync_counts", "ctsync_out", "_held")
 
     def __init__(self, plant: PlantConfig | None = None, *, pos_rate: int | None = None):
         self.params = DriveParameters()
@@ -122,6 +123,7 @@ class KernelCore:
         self.drive_enabled = True            # the drive's enable and run command (→ #1.11)
         # the drive speed demands (APC units) latched 3, 2 and 1 samples ago: the output channel's pipeline
         self._demand3 = self._demand2 = self._demand1 = 0
+        self._held: tuple[tuple[int, int], int] | None = None   # the output channel's holder (modes 3, 4)
         self._limit_rpm, self._limit = None, 0   # #1.06 and its speed, cached
         self._install_virtual_parameters()
         self.reinit()
@@ -225,6 +227,10 @@ class KernelCore:
         self.samples += 1
         t_prev = self.time_ns
         self.time_ns = t_prev + self.period_ns
+        if self._held is not None:   # what the channel latched last sample reaches its parameter now (L2109)
+            key, value = self._held
+            self.params.values[key] = value
+            self._held = None
         plant = self.plant
         before = plant.position
         if plant.step(self._demand3, self._demand2, self.drive_enabled and not self.trip):
@@ -322,11 +328,15 @@ class KernelCore:
             if shortcut is not None:                       # #1.21 / #3.22 hold the clamped value (L2148, A46)
                 shortcut = self._clamp_output(shortcut, limit)
                 value = speed_to_rpm_x10(shortcut)
-            if target is not None:
-                values[target] = value
-            if shortcut is None:   # no speed shortcut: the drive runs on its selected speed parameter (rpm×10)
+            if shortcut is None:
+                # modes 3, 4: the holder writes at the start of the next sample (L2109, L4259), as fast as the
+                # shortcut reaches the drive; a held #1.21/#3.22 is the speed the drive gets then
                 key = (3, 22) if values.get((3, 23), 0) == 1 else (1, 21)
-                shortcut = self._clamp_output(rpm_to_speed(values.get(key, 0)) // 10, limit)
+                self._held = (target, value) if target is not None else None
+                raw = value if target == key else values.get(key, 0)
+                shortcut = self._clamp_output(rpm_to_speed(raw) // 10, limit)
+            elif target is not None:
+                values[target] = value
             speed = shortcut
         self._demand3, self._demand2, self._demand1 = self._demand2, self._demand1, speed
 
