@@ -86,6 +86,49 @@ def test_rigid_lock_shows_a_reset_offset_as_following_error():
     assert abs(d.read(48)) <= 2            # the lock pulls the axis back onto ratio · reference
 
 
+def test_rigid_lock_selected_when_the_apc_is_enabled_shows_the_reset_offsets():
+    """L2381 "When mode 2 is selected, the internal integrated position counters are set as shown in Table 4-2"
+    (Digital Lock: profile generator input = reference integrator); L2597/L2616 "if the Digital Lock reference is
+    selected by APCSelectReference(4), with APCEnableRigidLock() active, the resultant following error will equal
+    the reset offset position value, and will therefore cause a corresponding speed reference to be generated".
+    Both offsets: feedback [2] and reference [6], the lock selected along with run mode 2 (§7.5's POS0 does both
+    in one pass). The lock aims at the reset reference integrator while the slave starts at the reset feedback
+    integrator; the error between them is pulled out within the profile limits (decisions A40, A42)."""
+    for fb_offset, ref_offset, rest in ((5000, 0, 0), (0, 3000, 3000), (5000, 3000, 3000)):
+        d = ApcDrive()
+        d.APCSetupOutputChannel(2, 0, 0)
+        d.APCEnableOutputChannel()
+        VirtualMaster(d, 0)
+        d.APCSetPositionResetOffset(fb_offset)
+        d.APCSetRefPosResetOffset(ref_offset)
+        d.APCEnableRigidLock()
+        d.APCSelectReference(4)
+        d.APCSetRunMode(2)
+        d.tick()                                  # the disabled sample: integrators at their reset values
+        d.tick()
+        assert (d.read(48), d.read(28), d.dl.target) == (fb_offset, ref_offset, ref_offset)
+        d.run_ms(1000)
+        assert abs(d.read(48) - rest) <= 2     # the speed reference moved the motor onto ratio · reference
+
+
+def test_lock_selected_at_enable_without_reset_offset_does_not_move():
+    """L2597 "Where an offset is applied, there will be no resultant following error" — nor without one: a rigid
+    lock enabled on a still master with both offsets 0 keeps the axis where it is; a non-rigid lock with an
+    offset engages at the slave (the rigid-lock clause only)."""
+    for rigid, offset in ((True, 0), (False, 5000)):
+        d = ApcDrive()
+        d.APCSetupOutputChannel(2, 0, 0)
+        d.APCEnableOutputChannel()
+        VirtualMaster(d, 0)
+        d.APCSetPositionResetOffset(offset)
+        if rigid:
+            d.APCEnableRigidLock()
+        d.APCSelectReference(4)
+        d.APCSetRunMode(2)
+        d.run_ms(500)
+        assert d.read(48) == offset and d.read(130) == 0
+
+
 def test_stop_to_position_transfer_with_and_without_remainder():
     """L2211-2230, Fig 4-47: N/D = 4/1, running at 2 units/s, Stop with decel 1 unit/s² ends 2 units later; setting
     only the whole units moves the axis to the nearest whole unit, APCTransferStopPosToPosSetPoint keeps it still."""

@@ -353,9 +353,14 @@ class KernelCore:
         mode = self.run_mode
         if mode == 1 or not self._was_enabled or self._reset_request:
             resetting = self._reset_request and self._was_enabled
+            enabling = mode == 2 and not self._was_enabled
             self._disabled_sample(reset=self.reset_sources_on_disable)
             self._was_enabled = mode == 2
             self._reset_request = False
+            if enabling and self.reset_sources_on_disable:
+                # mode 2 sets the integrators as Table 4-2 (L2381), as APCReset does: a digital lock selected
+                # now aims at the reset reference integrator too (L2597, L2616; decision A18)
+                self._after_reset = True
             if resetting:
                 # APCReset: one disabled sample inside run mode 2 ([4] stays 1, **inferred**); [5] falls at the
                 # end of the next kernel run; the references restart (a single-shot CAM, L3664), and a
