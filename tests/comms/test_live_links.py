@@ -149,3 +149,37 @@ def test_reading_a_canopen_node_changes_neither_its_nmt_state_nor_its_heartbeat(
             assert _nmt_state_and_heartbeat(bus) == before
         finally:
             bus.shutdown()
+
+
+def test_events_that_reach_nobody_are_kept_for_the_link_that_resumes_the_session(tmp_path):
+    """The IDE lets go of a lost link before its Reconnect opens a new one; the old link's event poll, still on the
+    wire when the line came back, fetched what the drive said meanwhile (its link-timeout reaction) and handed it
+    to nobody, so the resumed session never showed it (seen as a flaky IDE test under load). Events that reach no
+    subscriber are not acknowledged: the link that resumes the session gets them."""
+    from motiontool.comms.links import open_link
+
+    program = tmp_path / "ticks.m"
+    program.write_text('i = 0\nWHILE i < 100 DO\n  DELAY 10\n  i = i + 1\n  PRINT "tick ", i\nENDWHILE\n')
+    with drive_process("--clock", "virtual", "--node", f"1:{program}") as drive:
+        first, second = open_link(drive.url + "#1"), open_link(drive.url + "#1")
+        seen_first: list[str] = []
+        seen_second: list[str] = []
+        try:
+            first.subscribe(lambda event: seen_first.append(event.text))
+            first.call("advance", ms=50)
+            first.flush_events()
+            first.unsubscribe(first._subscribers[0])       # the IDE let go: the line was lost
+            first.call("advance", ms=50)
+            first.poll_events()                            # its poll that was still under way
+            second.resume(first)
+            second.subscribe(lambda event: seen_second.append(event.text))
+            second.flush_events()
+        finally:
+            first.close()
+            second.close()
+    ticks_first = [t for t in seen_first if t.startswith("tick")]
+    ticks_second = [t for t in seen_second if t.startswith("tick")]
+    assert ticks_first and ticks_second
+    n = int(ticks_first[-1].split()[1])
+    assert ticks_second == [f"tick {i}" for i in range(n + 1, n + 1 + len(ticks_second))]
+    assert len(ticks_first) + len(ticks_second) >= 9

@@ -48,9 +48,12 @@ class Link(ABC):
         if callback in self._subscribers:
             self._subscribers.remove(callback)
 
-    def _publish(self, event: LinkEvent) -> None:
-        for callback in list(self._subscribers):
+    def _publish(self, event: LinkEvent) -> bool:
+        """Hand `event` to every subscriber; False when there was none (the event reached nobody)."""
+        callbacks = list(self._subscribers)
+        for callback in callbacks:
             callback(event)
+        return bool(callbacks)
 
     def call(self, op: str, **args: Any) -> Any:
         with Link._ids:   # a wire drive answers a repeated id from its cache: two requests must never share one

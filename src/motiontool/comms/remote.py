@@ -154,9 +154,14 @@ class RemoteLink(Link):
                 self._publish(LinkEvent("message", 0, f"{value['lost']} controller events were lost "
                                                       "(they were not fetched in time)"))
             for seq, data in value.get("events", []):
-                if seq > self._last_event:
-                    self._publish(LinkEvent(**data))
-            self._last_event = int(value.get("last", self._last_event))
+                if seq <= self._last_event:
+                    continue
+                if not self._publish(LinkEvent(**data)):
+                    # nobody listens (the IDE let go of a lost link): not acknowledged, so the drive keeps it for
+                    # the link that resumes this session (Reconnect) instead of it being fetched into the void
+                    return False
+                self._last_event = seq
+            self._last_event = max(self._last_event, int(value.get("last", self._last_event)))
             return bool(value.get("more"))
 
     def resume(self, previous: Link) -> None:
