@@ -167,6 +167,10 @@ def build_parser() -> argparse.ArgumentParser:
     from motiontool.cameditor import camcli
 
     camcli.add_parser(sub)
+
+    from motiontool import sweepcli
+
+    sweepcli.add_parser(sub)
     return parser
 
 
