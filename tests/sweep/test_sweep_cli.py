@@ -142,3 +142,27 @@ def test_ctrl_c_keeps_the_rows_done(tmp_path, jobs):
     assert "interrupted: " in err and "points in" in err
     points = [int(r["point"]) for r in rows(out)]
     assert 1 <= len(points) < 400 and points == sorted(points)
+
+
+def test_random_points_with_a_seed_give_the_same_file(tmp_path, capsys):
+    p = program(tmp_path)
+    args = ["--vary", "KPROP=20:80", "--vary", "KDER=0:300:100", "--random", "5", "--seed", "11", "--seconds", "0.5",
+            "--measure", "max(abs(TRACKERR))"]
+    assert sweep(capsys, p, *args, "-j", "1", "-o", tmp_path / "a.csv")[0] == 0
+    assert sweep(capsys, p, *args, "-j", "2", "-o", tmp_path / "b.csv")[0] == 0
+    assert (tmp_path / "a.csv").read_bytes() == (tmp_path / "b.csv").read_bytes()
+    table = rows(tmp_path / "a.csv")
+    assert len(table) == 5 and all(20 <= int(r["KPROP"]) <= 80 and r["KDER"] in ("0", "100", "200", "300")
+                                   for r in table)
+
+
+def test_nothing_is_written_over_an_input(tmp_path, capsys):
+    p = program(tmp_path)
+    code, err = sweep(capsys, p, "--vary", "KPROP=20:40:20", "--measure", "max(APOS)", "-o", p)
+    assert code == 1 and "is the same as output file" in err and p.read_text(encoding="utf-8") == MOVE
+    points = program(tmp_path, "KPROP\n20\n", "pts.csv")
+    code, err = sweep(capsys, p, "--points", points, "--measure", "max(APOS)", "-o", points)
+    assert code == 1 and "--points" in err and points.read_text(encoding="utf-8") == "KPROP\n20\n"
+    code, err = sweep(capsys, p, "--points", points, "--vary", "KPROP=1:2:1", "--measure", "max(APOS)",
+                      "-o", tmp_path / "s.csv")
+    assert code == 1 and "no --vary or --random with it" in err
