@@ -1,5 +1,6 @@
 """The CAM reference (seed 004 §4.7, §5.2.4.5): coordinates, laws, walk, ratio, single shot, resets, limits."""
 
+import itertools
 import math
 
 import pytest
@@ -269,3 +270,68 @@ def test_delta_seg_limit_and_out_ratio_numerator_clamp():
     assert d.APCSetCAMDeltaSegLimit(300) == 1 and d.read(76) == 300
     assert d.APCSetCAMOutRatioNumerator(-1000) == 1 and d.read(80) == 0
     assert d.APCSetCAMOutRatioNumerator(2500) == 1 and d.read(80) == 2500
+
+
+def window_drive(select_in: int, window_in: int, task: str = "pos0"):
+    """Six 1000-count segments, window 0..2 set up front; a virtual master of 100 counts per sample; in POS task
+    `task` the CAM is selected in sample `select_in` and the window 3..5 written in sample `window_in`; the CAM's
+    segments [82] in the order it runs them."""
+    d = enabled_drive()
+    vm = VirtualMaster(d, 100)
+    d.APCCamInitialise1([1000] * 6, [10, 20, 30, 40, 50, 60])
+    d.APCSetCAMStartIndex(0)
+    d.APCSetCAMSize(3)
+    segments = []
+
+    def pos_task():
+        if d.samples == window_in:
+            d.APCSetCAMStartIndex(3)
+            d.APCSetCAMSize(3)
+        if d.samples == select_in:
+            d.APCSelectReference(3)
+    d.pos0 = lambda: (vm.pos0(), pos_task() if task == "pos0" else None)
+    d.pos1 = lambda: (pos_task() if task == "pos1" else None, segments.append(d.read(82)))
+    d.run_ms(select_in + 1)
+    segments.clear()                                      # from the first sample the CAM runs
+    d.run_ms(100)
+    return d, [k for k, _ in itertools.groupby(segments)]
+
+
+def test_start_index_and_size_set_along_with_selecting_the_cam_wait_for_its_wrap():
+    """L3505-3508 (start index) and L3517-3520 (size): "If the start index and size are set along with selecting the
+    CAM reference, then the new CAM size and start index will not take effect until the CAM reaches the end and
+    wraps over. To prevent this effect the user should set the CAM size and start index, then in the next Pos task
+    sample select the CAM Reference." POS0 and POS1 alike; the CAM starts with the window it had before."""
+    for task in ("pos0", "pos1"):
+        d, segments = window_drive(select_in=10, window_in=10, task=task)
+        assert segments[:5] == [0, 1, 2, 3, 4] and d.read(74) == 3 and d.read(75) == 3   # the old window first
+
+
+def test_start_index_and_size_set_a_sample_before_selecting_take_effect_at_once():
+    """L3507-3508 "the user should set the CAM size and start index, then in the next Pos task sample select the CAM
+    Reference": the CAM starts at segment 3; the same from outside the POS tasks."""
+    d, segments = window_drive(select_in=10, window_in=9)
+    assert segments[:4] == [3, 4, 5, 3]
+    d, _ = cam_drive()
+    d.APCSetCAMStartIndex(1)
+    d.APCSetCAMSize(2)
+    d.APCSelectReference(3)
+    d.tick()
+    assert d.read(82) == 1 and d.read(100) == 3
+
+
+def test_a_cam_selected_with_its_first_size_in_the_same_pass_has_size_0():
+    """L3517-3520 with L3512-3516: a size written in the POS task that selects the CAM acts from the wrap on, so a
+    CAM whose size was 0 before starts with size 0: "the Stop reference will be automatically selected", 90.49 = 3,
+    and the message says why."""
+    d = enabled_drive()
+    d.APCCamInitialise1([1000] * 3, [10, 20, 30])
+    errors = []
+    d.listeners.append(lambda kind, details: errors.append(details.get("text", "")) if kind == "error" else None)
+
+    def pos0():
+        d.APCSetCAMSize(3)
+        d.APCSelectReference(3)
+    d.pos0 = pos0
+    d.tick()
+    assert d.read(100) == 0 and d.params["90.49"] == 3 and "set them a sample before" in errors[0]

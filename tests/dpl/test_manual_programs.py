@@ -115,6 +115,31 @@ def test_s7_3_runs_its_cam_cycles_forwards_and_back():
     assert abs(drive.read("APC_FB_POS") - third) < 100               # the drive follows its reference
 
 
+def test_s7_3_reselected_with_a_new_direction_walks_into_the_same_sample_pitfall():
+    """§7.3 sets the start index in the POS0 pass that selects the CAM: stopped (#18.32 = 0), switched to reverse
+    (#18.33 = 1) and started again, the CAM first runs the old forward elements 0-2 and reverses only from its
+    wrap (L3505-3508 "the new CAM size and start index will not take effect until the CAM reaches the end and
+    wraps over")."""
+    drive = ApcDrive()
+    runtime = load("s7_3_cam", drive)
+    runtime.start()
+    runtime.advance(10)
+    drive.params.write((18, 32), 1)
+    until_wrap(runtime, drive)
+    drive.params.write((18, 32), 0)
+    runtime.advance(3000)                                            # profiled to a stop
+    drive.params.write((18, 33), 1)
+    drive.params.write((18, 32), 1)
+    segments = []
+    for _ in range(2 * 12_000):
+        runtime.advance(1)
+        if not segments or segments[-1] != drive.read("APC_CAM_INDEX"):
+            segments.append(drive.read("APC_CAM_INDEX"))
+        if len(segments) == 5:
+            break
+    assert segments == [0, 1, 2, 3, 4] and drive.read("APC_CAM_STRT_IDX") == 3
+
+
 def test_s7_4_homes_on_the_marker_and_shows_the_43_versus_48_issue():
     """§7.4 homes on the feedback marker: 10 rpm until the marker, then a Position move to the captured position
     and Stop within ±20 counts. It compares the main position [48] with the *source* marker position [43]

@@ -55,6 +55,10 @@ class Cam:
         self.wrapped = 0            # [89]
         self.active_start = 0       # the window in use; [74]/[75] apply at the next wrap or restart (L1520)
         self.active_size = 0
+        # [74]/[75] written in a POS task: that task pass (sample, task) and the window before it; a CAM selected
+        # in the same pass starts with that earlier window (L3505-3508, decision A37)
+        self.window_pass: tuple[int, str] | None = None
+        self.window_before = (0, 0)
         self._done_here = 0         # slave travel already output inside the present segment
         self._travel = 0            # single shot: net master travel since the start
         self._forward_room = 0
@@ -98,10 +102,11 @@ class Cam:
                                                 f"({n} elements, 90.49 = 1)")
 
     # --- engagement -------------------------------------------------------------------------------------------
-    def engage(self) -> None:
-        """Start (selection, restart): zero reset at the start index, absolute reset at [85]/[86] within the
-        window (L1573-1587); the single-shot room follows from where it starts (L3664)."""
-        self.active_start, self.active_size = self.start_index, self.size
+    def engage(self, window: tuple[int, int] | None = None) -> None:
+        """Start (selection, restart) in `window` (start index, size; by default [74]/[75]): zero reset at the start
+        index, absolute reset at [85]/[86] within the window (L1573-1587); the single-shot room follows from where
+        it starts (L3664)."""
+        self.active_start, self.active_size = window or (self.start_index, self.size)
         self._check_window(self.active_start, self.active_size)
         start, end = self.active_start, self.active_start + self.active_size
         if self.absolute_reset:

@@ -19,6 +19,8 @@ class ReferenceCommands(Conversions):
             self.apc_error(3, "CAM size 0 selects Stop (90.49 = 3)")      # L3514-3516
             return OK
         self.reference = Reference
+        if Reference == core.CAM and self.task in ("pos0", "pos1"):
+            self._cam_selected_pass = (self.samples, self.task)
         return OK
 
     def APCSelectActionOnFreeze(self, Action: int) -> int:
@@ -78,15 +80,26 @@ class ReferenceCommands(Conversions):
         return OK
 
     def APCSetCAMStartIndex(self, StartIndex: int) -> int:
-        """Clamped to 0..65535 (L3500-3503); a running CAM takes it at its next wrap (L3505-3508)."""
+        """Clamped to 0..65535 (L3500-3503); a running CAM, or one selected in the same POS task, takes it at its
+        next wrap (L3505-3508)."""
+        self._cam_window_written()
         self.cam.start_index = max(0, min(65535, StartIndex))
         return OK
 
     def APCSetCAMSize(self, Size: int) -> int:
+        """As the start index (L3517-3520)."""
+        self._cam_window_written()
         self.cam.size = max(0, min(65535, Size))
         if self.cam.size == 0 and self.reference == core.CAM:
             self.apc_error(3, "CAM size set to 0 while the CAM runs (90.49 = 3)")
         return OK
+
+    def _cam_window_written(self) -> None:
+        """Keep the window that held before this POS task pass, for a CAM selected in the same pass."""
+        cam = self.cam
+        if self.task in ("pos0", "pos1") and cam.window_pass != (self.samples, self.task):
+            cam.window_pass = (self.samples, self.task)
+            cam.window_before = (cam.start_index, cam.size)
 
     def APCSetCAMDeltaSegLimit(self, DeltaLimit: int) -> int:
         """Clamped to 0..65535 (L3525), then "Operation successful" (decision A6)."""

@@ -25,6 +25,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from motiontool.apc.cam import Cam, CamError
+from motiontool.apc.camlaws import ERR_SIZE_ZERO
 from motiontool.apc.diglock import DigitalLock
 from motiontool.apc.driveparams import DriveParameters
 from motiontool.apc.intmath import wrap32
@@ -113,6 +114,7 @@ class KernelCore:
         self.stop_target = 0                 # [176] while Stop is active
         self._active = None                  # the reference the kernel ran last sample
         self._stop_valid = False
+        self._cam_selected_pass: tuple[int, str] | None = None   # the POS task pass that selected the CAM
         self._freeze_since: int | None = None
         self._ref_last = 0                   # [28] when the kernel last ran
         self._after_reset = False
@@ -396,10 +398,18 @@ class KernelCore:
             self.stop_target = pg.stop_position(linear=self.stop_mode == LINEAR_STOP)
             self._stop_valid = True
         elif reference == CAM:
+            cam, selected = self.cam, self._cam_selected_pass
+            self._cam_selected_pass = None
+            # start index and size written in the pass that selected the CAM wait for its wrap (L3505, L3517)
+            window = cam.window_before if selected is not None and cam.window_pass == selected else None
             try:
-                self.cam.engage()
+                cam.engage(window)
             except CamError as exc:
-                self.apc_error(exc.code, str(exc))
+                text = str(exc)
+                if window is not None and exc.code == ERR_SIZE_ZERO:
+                    text += (": the start index and size set in the POS task that selects the CAM act from its wrap"
+                             " on; set them a sample before (L3517-3520)")
+                self.apc_error(exc.code, text)
                 return self._enter(STOP)
         elif reference == DIG_LOCK:
             if self._after_reset and self.dl.rigid:
