@@ -62,7 +62,7 @@ Time\tCPOS\tAPOS
 2\t10\t8
 4\t20\t27
 """
-IMAGE_PROGRAMS = ["D12_hello.m", "F_C11_position_interrupts.m", "F_D20_functions_corrected.m", "F_D16_arrays.m",
+IMAGE_PROGRAMS = ["D12_hello.m", "F_C11_position_interrupts.m", "F_D20_functions.m", "F_D16_arrays.m",
                   "F_D19_doubles.m", "F_C08_control_flow.m", "F_C22_print.m", "D15_error_handler.m"]
 
 

@@ -78,7 +78,8 @@ def _compile(text, path, include_dirs, debug, name, cancelled) -> CompileResult:
         files = [f.path for f in result.files]
         for w in result.warnings:
             sink.add(w)
-        program = parse(result.tokens, parameter_lookup=_parameter_lookup, cancelled=cancelled)
+        program = parse(result.tokens, parameter_lookup=_parameter_lookup, cancelled=cancelled,
+                        warnings=sink.items)
     except CompileError as exc:
         files = files or [f.path for f in pre.result.files]
         sink.add(exc.diagnostic)

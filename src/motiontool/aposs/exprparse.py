@@ -32,6 +32,7 @@ class ExpressionParser:
     i: int
     commands: CommandTable
     function_names: set[str]
+    shadowed: set[str]      # command names the program uses as variables (shadow.py, L14)
 
     # --- token helpers ----------------------------------------------------------------------------
     @property
@@ -167,7 +168,7 @@ class ExpressionParser:
         t = self.advance()
         known = self.commands.get(t.value)
         if known is not None and known.kind in ("keyword", "command", "interrupt", "sysvar", "function") \
-                and t.value not in ("LONG", "DOUBLE"):
+                and t.value not in ("LONG", "DOUBLE") and t.value not in self.shadowed:
             what = "a keyword" if known.kind == "keyword" else "a command name"
             raise self.error(f"'{t.text}' is {what} and cannot be used as a variable", t)
         # In a command argument `x (s)` is a variable and a parenthesised argument unless x is a function.
@@ -199,7 +200,7 @@ class ExpressionParser:
     def match_command(self) -> Command | None:
         """The longest command whose words start here (MOTOR ON before MOTOR), or None."""
         t = self.tok
-        if t.kind != IDENT:
+        if t.kind != IDENT or t.value in self.shadowed:
             return None
         for command in self.commands.starting_with(t.value):
             if command.kind in ("keyword", "interrupt", "operator"):

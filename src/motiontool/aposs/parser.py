@@ -14,6 +14,7 @@ from motiontool.aposs.diagnostics import Cancelled, CompileError
 from motiontool.aposs.exprparse import ExpressionParser, describe
 from motiontool.aposs.lexer import EOF, IDENT, NEWLINE, Token
 from motiontool.aposs.preprocess import PRAGMA
+from motiontool.aposs.shadow import shadowed_commands, subprogram_name_warning
 
 _POSITION_KINDS = ("APOS", "IPOS", "MAPOS", "MCPOS", "MIPOS")
 _VALUE_KINDS = ("INT", "PERIOD", "TIME", "COMBIT", "STATBIT", "PARAM", "CANINPUT")
@@ -32,6 +33,8 @@ class Parser(ExpressionParser):
         self._parameter_lookup = parameter_lookup
         self._in_function = False
         self.cancelled = None  # a callable: True when the caller no longer wants the result
+        # command names the program uses as its variables (L14): those names are not commands here
+        self.shadowed, self.warnings = shadowed_commands(tokens, self.commands)
 
     def parameter_number(self, name: str) -> int | None:
         return self._parameter_lookup(name) if self._parameter_lookup else None
@@ -378,7 +381,7 @@ class Parser(ExpressionParser):
 
     def _declarator(self, array_required: bool) -> ast.Declarator:
         name = self.expect_ident("a name")
-        if self.commands.get(name.value) is not None:
+        if self.commands.get(name.value) is not None and name.value not in self.shadowed:
             raise self.error(f"'{name.text}' is a command name and cannot name a variable or array", name)
         dims: list[int] = []
         while self.tok.is_op("["):
@@ -468,7 +471,7 @@ class Parser(ExpressionParser):
             self.advance()
             name = self.expect_ident("the subprogram's name")
             if self.commands.get(name.value) is not None:
-                raise self.error(f"'{name.text}' is a command name and cannot name a subprogram", name)
+                self.warnings.append(subprogram_name_warning(name, self.commands.get(name.value).kind))
             self._end_statement("SUBPROG name")
             body, end = self.block(("RETURN",), t, "RETURN")
             self.advance()
@@ -519,7 +522,7 @@ class Parser(ExpressionParser):
             self.expect_op("]", " in the array parameter type 'long[]'")
             is_array = True
         name = self.expect_ident("the parameter's name")
-        if self.commands.get(name.value) is not None:
+        if self.commands.get(name.value) is not None and name.value not in self.shadowed:
             raise self.error(f"'{name.text}' is a command name and cannot name a parameter", name)
         return ast.Param(t.loc, t.value.lower(), name.value, name.text, is_array)
 
@@ -531,10 +534,14 @@ _KEYWORD_HANDLERS = {"IF", "WHILE", "REPEAT", "SWITCH", "LOOP", "GOTO", "GOSUB",
 
 
 def parse(tokens: list[Token], commands: CommandTable | None = None, parameter_lookup=None,
-          cancelled=None) -> ast.Program:
+          cancelled=None, warnings: list | None = None) -> ast.Program:
+    """`warnings` (if given) receives the parser's warnings, also when it stops with an error."""
     parser = Parser(tokens, commands, parameter_lookup)
     parser.cancelled = cancelled
     try:
         return parser.parse_program()
     except RecursionError:
         raise CompileError("expression nested too deeply", parser.tok.loc) from None
+    finally:
+        if warnings is not None:
+            warnings.extend(parser.warnings)

@@ -8,8 +8,8 @@
 // - D:6066-6067 lost "ENDIF" before "GOTO main" restored (spec §10 item 34)
 // - D:6071 "SUBMAINPROG SUBPROG syncprog" on one line; split into two lines (one statement per line)
 // - D:6035-6037, 6066 subprograms stopprog, calc, break, speedprog are called but their bodies are not in the manual: minimal SUBPROG ... RETURN added
-// Not repaired (the manual's own slip, see the corrected copy): D:6037 "ON TIME 10000 GOSUB break": BREAK is a
-//   reserved word (MCO >= 5.00) and cannot name a subprogram: `motiontool check` reports it.
+// Note: D:6037 "ON TIME 10000 GOSUB break" names a subprogram with the reserved word BREAK (MCO >= 5.00); after
+//   GOSUB and SUBPROG only a subprogram can stand, so it compiles with a warning (decision L14, CR 2489 does the same)
 
 DIM send[12], receive[12]	// Array
 ON ERROR GOSUB errhandle	// Interrupts

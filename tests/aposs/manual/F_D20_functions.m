@@ -9,8 +9,8 @@
 // OCR repairs:
 // - D:6631 closing brace "}" of test_func lost; restored
 // Expected: wert = 5, test[2] = 70
-// Not repaired (the manual's own slip, see the corrected copy): "index" names a variable, but INDEX is a command
-//   (D:7013) and names must not equal command names (D:6425): `motiontool check` reports it.
+// Note: "index" names a variable although INDEX is a command (D:7013) and D:6425 says names must not equal
+//   command names: the manual's own program does it, so it compiles with a warning (decision L14)
 
 DIM test[100]
 long a, b

@@ -10,8 +10,8 @@
 // Expected: var = 7, testarray[5] = 8, testarray[10] = 1, value = -1, index = 100 after the loop
 // Note: in "test[index] = index++" the manual does not say whether the element index is taken before or after
 //   the increment (intended: test[i] = i); a test should not depend on it.
-// Not repaired (the manual's own slip, see the corrected copy): "index" names a variable, but INDEX is a command
-//   (D:7013) and names must not equal command names (D:6425): `motiontool check` reports it.
+// Note: "index" names a variable although INDEX is a command (D:7013) and D:6425 says names must not equal
+//   command names: the manual's own program does it, so it compiles with a warning (decision L14)
 
 DIM test[100], testarray[20]
 index = 1

@@ -117,10 +117,9 @@ def test_c20_pcd_and_pdo_words_with_bit_and_byte_selectors():
 
 
 def test_d14_program_layout_synchronises_on_input_3_and_handles_errors_with_input_18():
-    """DG 6033-6085 (corrected copy, "break" → "break_prog"): input 3 starts SYNCP once (sync_flag); an error calls
-    errhandle, which waits for input 18 and clears it (ERRCLR). As printed `SUBPROG break` is refused by check
-    (tests/aposs/test_examples.py)."""
-    run = run_manual("D14_program_layout_corrected.m", 1000, inputs=[(3, 1, 500)], master=MasterConfig(velocity=5.0))
+    """DG 6033-6085 as printed (`SUBPROG break`, decision L14): input 3 starts SYNCP once (sync_flag); an error calls
+    errhandle, which waits for input 18 and clears it (ERRCLR)."""
+    run = run_manual("D14_program_layout.m", 1000, inputs=[(3, 1, 500)], master=MasterConfig(velocity=5.0))
     ctl = run.controller
     assert ctl.axis.mode == "sync" and variables(run, "sync_flag") == [1]
     ctl.io.inputs[18] = 0

@@ -105,16 +105,17 @@ def test_d19_double_arithmetic(name, fabs):
 
 
 def test_d20_functions_return_a_value_and_change_an_array_by_reference():
-    """DG 6621-6646: test_func(1, 2, 2.0) returns 1 + 2 + 2; modi(test, 2) multiplies element 2 by 10."""
-    run = run_manual("F_D20_functions_corrected.m", 1000)
+    """DG 6621-6646: test_func(1, 2, 2.0) returns 1 + 2 + 2; modi(test, 2) multiplies element 2 by 10 (as printed: a
+    parameter named `index`, DG 6639, decision L14)."""
+    run = run_manual("F_D20_functions.m", 1000)
     assert run.prints == ["wert = 5 test[2] = 70"] and not run.errors
 
 
 def test_d21_post_increment_yields_the_old_value():
     """DG 6690-6702 and the operator rows DG 6673-6675: `var = testarray[5]++` gives 7 and leaves 8."""
-    run = run_manual("F_D21_postincrement_corrected.m", 1000)
+    run = run_manual("F_D21_postincrement.m", 1000)
     assert run.prints == ["var = 7 testarray[5] = 8"]
-    assert variables(run, "value", "testarray[10]", "idx") == [-1, 1, 100]
+    assert variables(run, "value", "testarray[10]", "index") == [-1, 1, 100]
 
 
 def test_d22_preprocessor_macros_and_conditional_compilation():
