@@ -166,3 +166,15 @@ def test_nothing_is_written_over_an_input(tmp_path, capsys):
     code, err = sweep(capsys, p, "--points", points, "--vary", "KPROP=1:2:1", "--measure", "max(APOS)",
                       "-o", tmp_path / "s.csv")
     assert code == 1 and "no --vary or --random with it" in err
+
+
+def test_without_distributed_the_dask_executor_is_one_line(tmp_path, capsys, monkeypatch):
+    monkeypatch.setitem(sys.modules, "distributed", None)  # as if it were not installed: import raises
+    p = tmp_path / "p.m"
+    p.write_text("POSA 204800\n", encoding="utf-8")
+    code = cli.main(["sweep", str(p), "--vary", "KPROP=20:40:20", "--measure", "max(APOS)", "--executor",
+                     "dask:tcp://127.0.0.1:8786", "-o", str(tmp_path / "s.csv")])
+    err = capsys.readouterr().err
+    assert code == 1
+    assert "--executor dask: needs the package 'distributed' (pip install 'motiontool[cluster]')" in err
+    assert not (tmp_path / "s.csv").exists()
