@@ -80,8 +80,20 @@ def test_system_include_and_backslash_paths(tmp_path: Path):
         preprocess_text("#include <here.m>\n", str(tmp_path / "main.m"), include_dirs=[system])
 
 
+def test_the_command_tables_include_form_is_read_with_warnings(tmp_path: Path):
+    """DG 7061: "#INCLUDE	compiler directive: embedding further data	#INCLUDE file" - the spelling of programs before
+    MCO 305 (DG 6864: "Before the statement contained no quotes"), which DG 6825 ("the preprocessor commands must
+    be lower case only") would refuse: read as #include "file", with a warning for the case and one for the quotes
+    (decision L16)."""
+    (tmp_path / "defs.m").write_text("d = 7\n")
+    result = preprocess_text("#INCLUDE defs.m\nx = d\n", str(tmp_path / "main.m"))
+    assert [t.text for t in result.tokens if t.kind == "IDENT"][:2] == ["d", "x"]
+    assert [w.message for w in result.warnings] == [
+        "write #include: preprocessor directives are lower case (DG 6825)", 'write #include "defs.m"']
+
+
 @pytest.mark.parametrize("src, message, line", [
-    ("#INCLUDE \"x.m\"\n", "must be lower case", 1),
+    ("#DEFINE X 1\n", "must be lower case", 1),   # only #include has an upper-case form in the manual (L16)
     ("#if 1\nx = 1\n", "#if without #endif", 1),
     ("x = 1\n#endif\n", "#endif without #if", 2),
     ("#if 1\n#else\n#else\n#endif\n", "#else after #else", 3),

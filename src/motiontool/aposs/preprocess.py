@@ -127,6 +127,11 @@ class Preprocessor:
         m = re.match(r"\s*([A-Za-z_]\w*)?\s*(.*)$", body, re.S)
         word, rest = (m.group(1) or ""), m.group(2).strip()
         active = not conds or conds[-1].active
+        if word.lower() == "include" and word != "include":
+            # DG 7061 lists "#INCLUDE file" (the old spelling, DG 6864) against DG 6825 "lower case only" (L16)
+            self.result.warnings.append(Diagnostic(
+                "warning", "write #include: preprocessor directives are lower case (DG 6825)", tok.loc))
+            word = "include"
         if word.lower() in _DIRECTIVES and word != word.lower():
             raise CompileError(f"preprocessor directives must be lower case: write '#{word.lower()}'", tok.loc)
         if word.upper() == "DEBUG" and word == "DEBUG":
