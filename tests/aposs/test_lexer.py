@@ -31,6 +31,19 @@ def test_octal_constant_warns_and_bad_octal_digit_is_an_error():
         tokenize("x = 018", "t.m")
 
 
+def test_an_fc_parameter_number_with_a_leading_zero_is_decimal():
+    """CR 4047 writes FC 300 par. 0-25 as `025` after SETVLT (the LCP number without its dash, as CR 1405 `GETVLT
+    413` for 4-13); DG 6413's octal rule would make it 21. Right after GETVLT, GETVLTSUB, SETVLT and SETVLTSUB the
+    number is decimal, with no octal warning; elsewhere 025 stays octal (decision L1)."""
+    warnings: list[Diagnostic] = []
+    toks = tokenize("SETVLTSUB 025 1 0100\nx = getvlt 0413 + 025", "t.m", warnings=warnings)
+    assert [t.value for t in toks if t.kind == INT] == [25, 1, 64, 413, 21]
+    assert [w.loc.col for w in warnings] == [17, 19]
+    assert [w.loc.line for w in warnings] == [1, 2]
+    with pytest.raises(CompileError, match="invalid digit '8'"):
+        tokenize("x = GETVLT + 018", "t.m")
+
+
 def test_hex_wraps_to_a_signed_32_bit_value():
     assert kinds("0xFFFFFFFF") == [(INT, -1)]
     with pytest.raises(CompileError, match="does not fit in 32 bits"):

@@ -50,18 +50,20 @@ def test_getvlt_and_setvlt_take_time_on_the_drive():
     assert run.prints == ["20 100"]
 
 
-def test_setvltsub_example_as_printed_is_rejected_and_025_is_octal_21():
-    # CR 4052-4053: "SETVLT 025 1 100 // sets index 1 of the par. 0-25 "Quick menu" to 100 "configuration"": SETVLT
-    # takes two values (CR 4013 "SETVLT par v"), so the printed line does not compile; with SETVLTSUB, 025 is the
-    # octal constant 21 (decision L1, DG 6413) and parameter 0-21 is not in the simulated drive: error 112
+def test_setvltsub_example_as_printed_is_rejected_by_its_syntax_and_025_is_parameter_0_25():
+    # CR 4047-4048: "SETVLT 025 1 100 // sets index 1 of the par. 0-25 "Quick menu" to 100 "configuration"": SETVLT
+    # takes two values (CR 4011 "SETVLT par v"), so the printed line does not compile, and the error names SETVLTSUB
+    # (CR 4031 "SETVLTSUB par indxno v"); after the VLT commands 025 is par. 0-25, not octal 21 (decision L1 revised,
+    # issue 25 item 5): SETVLTSUB 025 1 100 does what the comment says
     printed = compile_source("SETVLT 025 1 100\n", "t.m")
     assert not printed.ok
-    assert any("octal" in d.format() and "21" in d.format() for d in printed.diagnostics)
-    run = run_source("SETVLTSUB 025 1 100\n", 1000)
-    assert [e.number for e in run.errors] == [112]
-    # what the page means: index 1 of 0-25 set to 100 (parameter 1-00 in My Personal Menu)
-    meant = run_source("SETVLTSUB 25 1 100\nPRINT GETVLTSUB 25 1, \" \", GETVLTSUB 25 0\n", 1000)
-    assert meant.prints == ["100 0"]
+    assert [d.message for d in printed.diagnostics if d.severity == "error"] == [
+        "SETVLT takes a parameter number and a value; set an element of an indexed parameter with SETVLTSUB "
+        "par indxno v (CR 4031)"]
+    assert not any("octal" in d.message for d in printed.diagnostics)
+    run = run_source("SETVLTSUB 025 1 100\nPRINT GETVLTSUB 025 1, \" \", GETVLTSUB 25 1, \" \", GETVLTSUB 025 0\n",
+                     1000)
+    assert run.prints == ["100 100 0"] and not run.errors   # index 1 of 0-25 set, index 0 untouched
 
 
 def test_unknown_number_and_read_only_are_112_and_index_and_range_are_183():

@@ -62,6 +62,11 @@ _HINTS = {"\u2013": "-", "\u2014": "-", "\u201c": '"', "\u201d": '"', "\u2018": 
           "\u00a0": " "}
 
 
+# The FC 300 parameter number right after these is read in decimal also with a leading 0: CR 4047 writes par. 0-25
+# as `025` (as CR 1405 writes 4-13 as `413`), where DG 6413's octal rule would make it 0-21 (decision L1).
+_FC_PARAMETER_COMMANDS = frozenset({"GETVLT", "GETVLTSUB", "SETVLT", "SETVLTSUB"})
+
+
 def tokenize(text: str, file: str, line: int = 1, col: int = 1,
              warnings: list[Diagnostic] | None = None) -> list[Token]:
     """Split `text` into tokens; the first character is at (line, col). Ends with NEWLINE and EOF.
@@ -163,6 +168,9 @@ def tokenize(text: str, file: str, line: int = 1, col: int = 1,
                 tail = re.match(r"[A-Za-z0-9_]*", text[end:]).group()
                 raise CompileError(f"invalid number '{word}{tail}'", loc_at(start))
             negated = bool(tokens) and tokens[-1].is_op("-")
+            if kind == "int" and word[0] == "0" and tokens and tokens[-1].kind == IDENT \
+                    and tokens[-1].value in _FC_PARAMETER_COMMANDS and word.isdigit():
+                kind = "fc_parameter"   # 025 = FC 300 par. 0-25, the LCP number without its dash (L1)
             append(_number(kind, word, loc_at(start), warnings, negated))
             at_line_start = False
         pos = end
@@ -180,6 +188,8 @@ def _number(kind: str, word: str, loc: Location, warnings: list[Diagnostic] | No
         return Token(FLOAT, word, value, loc)
     if kind == "hex":
         value = int(word, 16)
+    elif kind == "fc_parameter":
+        value = int(word)
     elif len(word) > 1 and word[0] == "0":
         # DG 6413: a leading 0 makes an octal constant (0100 = 64).
         bad = next((c for c in word if c in "89"), None)

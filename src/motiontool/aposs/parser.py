@@ -154,6 +154,9 @@ class Parser(ExpressionParser):
         if self.peek(len(command.words)).is_op("="):
             raise self.error(f"'{t.text}' is a command name and cannot be used as a variable", t)
         call = self.command_call(command, in_expression=False)
+        if command.name == "SETVLT" and not self.at_end_of_statement():   # CR 4047 prints SETVLT 025 1 100 (L1)
+            raise self.error("SETVLT takes a parameter number and a value; set an element of an indexed parameter "
+                             "with SETVLTSUB par indxno v (CR 4031)")
         self._end_statement(command.name)
         return ast.Command(t.loc, call)
 
