@@ -23,12 +23,14 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from motiontool.comms.protocol import LinkError
+from motiontool.comms.wire import HEADER, MAX_ANSWER_BYTES, MAX_REQUEST_BYTES
 
 DATA, FETCH = 1, 2                     # master → slave
 ACK, RESULT, BUSY, ERROR = 3, 4, 5, 6  # slave → master
 OP_NAMES = {DATA: "DATA", FETCH: "FETCH", ACK: "ACK", RESULT: "RESULT", BUSY: "BUSY", ERROR: "ERROR"}
 RESTARTS = 3          # whole-message repeats after ERROR answers
 BUSY_WAIT_S = 0.005   # first wait after BUSY, doubled up to 0.1 s
+MAX_BUSY_S = 60.0     # a slave that answers BUSY for longer than this is hung: the exchange fails
 
 
 @dataclass(frozen=True)
@@ -55,9 +57,11 @@ class MasterChannel:
     """The master's side: `exchange(message) -> answer`; `transfer(frame) -> reply frame` is the transport (it
     repeats a frame on its own timeouts and raises LinkError when the slave does not answer)."""
 
-    def __init__(self, transfer: Callable[[Frame], Frame], max_payload: int, first_seq: int = 0):
+    def __init__(self, transfer: Callable[[Frame], Frame], max_payload: int, first_seq: int = 0,
+                 max_busy_s: float = MAX_BUSY_S):
         self.transfer = transfer
         self.max_payload = max_payload
+        self.max_busy_s = max_busy_s
         self.seq = first_seq & 0xFFFF
 
     def _next(self) -> int:
@@ -84,13 +88,20 @@ class MasterChannel:
         answer = bytearray()
         wait = BUSY_WAIT_S
         index = 0
+        busy_since = None
         while True:
             if reply.op == BUSY:
+                busy_since = busy_since or time.monotonic()
+                if time.monotonic() - busy_since > self.max_busy_s:
+                    raise LinkError(f"the controller has answered BUSY for {self.max_busy_s:g} s: it does not "
+                                    "finish the request")
                 time.sleep(wait)
                 wait = min(wait * 2, 0.1)
             elif reply.op == RESULT:
                 if reply.first != (index == 0) or reply.index != index & 0xFFFF:
                     raise _Restart(f"answer chunk {reply.index} where {index} was expected")
+                if len(answer) + len(reply.payload) > HEADER.size + MAX_ANSWER_BYTES:
+                    raise LinkError(f"the controller's answer is longer than {HEADER.size + MAX_ANSWER_BYTES} bytes")
                 answer += reply.payload
                 index += 1
                 if reply.last:
@@ -108,6 +119,9 @@ class MasterChannel:
 
 class _Restart(Exception):
     pass
+
+
+MAX_MESSAGE = HEADER.size + MAX_REQUEST_BYTES   # the longest request a slave assembles
 
 
 class SlaveChannel:
@@ -147,6 +161,8 @@ class SlaveChannel:
                 self._incoming, self._next_index, self._outgoing = bytearray(), 0, []
             elif self._incoming is None or frame.index != self._next_index & 0xFFFF:
                 return self._error(frame, f"chunk {frame.index} out of sequence")
+            if len(self._incoming) + len(frame.payload) > MAX_MESSAGE:   # DATA without LAST, forever
+                return self._error(frame, f"message longer than {MAX_MESSAGE} bytes")
             self._incoming += frame.payload
             self._next_index += 1
             if not frame.last:

@@ -32,6 +32,10 @@ REQUEST, ANSWER = ord("Q"), ord("A")
 FLAG_ZLIB = 0x01
 HEADER = struct.Struct(">BBBBI")
 COMPRESS_FROM = 96   # bodies shorter than this are sent as they are (zlib's header would eat the gain)
+# The largest request body (inflated): a full array memory (1 000 000 values, ~12 MiB of JSON) or a program
+# image fits; a few hundred bytes of zlib can no longer make the controller side allocate gigabytes.
+MAX_REQUEST_BYTES = 16 << 20
+MAX_ANSWER_BYTES = 256 << 20   # answers (scope recordings, uploads) are read by the master, which asked for them
 
 
 class WireError(LinkError):
@@ -48,7 +52,7 @@ def _pack(kind: int, body: dict[str, Any]) -> bytes:
     return HEADER.pack(VERSION, kind, flags, 0, zlib.crc32(raw)) + raw
 
 
-def _unpack(data: bytes, kind: int) -> dict[str, Any]:
+def _unpack(data: bytes, kind: int, limit: int) -> dict[str, Any]:
     if len(data) < HEADER.size:
         raise WireError(f"message of {len(data)} bytes is shorter than its {HEADER.size}-byte header")
     version, got_kind, flags, _reserved, crc = HEADER.unpack_from(data)
@@ -58,14 +62,21 @@ def _unpack(data: bytes, kind: int) -> dict[str, Any]:
         raise WireError(f"byte 1: message kind {chr(got_kind)!r} where {chr(kind)!r} was expected")
     if flags & ~FLAG_ZLIB:
         raise WireError(f"byte 2: unknown flags 0x{flags:02x}")
+    if len(data) - HEADER.size > limit:
+        raise WireError(f"byte 8: a body of {len(data) - HEADER.size} bytes, more than {limit}")
     body = bytes(data[HEADER.size:])
     if zlib.crc32(body) != crc:
         raise WireError(f"bytes 4-7: checksum mismatch over the {len(body)}-byte body (the message is damaged)")
     if flags & FLAG_ZLIB:
+        inflater = zlib.decompressobj()
         try:
-            body = zlib.decompress(body)
+            body = inflater.decompress(body, limit + 1)   # inflated no further than the limit
         except zlib.error as exc:
             raise WireError(f"byte 8: compressed body does not inflate: {exc}") from None
+        if len(body) > limit:
+            raise WireError(f"byte 8: the compressed body inflates to more than {limit} bytes")
+        if not inflater.eof:
+            raise WireError("byte 8: compressed body does not inflate: it ends early")
     try:
         value = json.loads(body.decode("utf-8"))
     except (UnicodeDecodeError, json.JSONDecodeError) as exc:
@@ -81,7 +92,7 @@ def encode_request(request: Request, session: int = 0) -> bytes:
 
 def decode_request(data: bytes) -> tuple[Request, int]:
     """(request, session) of a request message; WireError naming the byte offset when it is damaged."""
-    body = _unpack(data, REQUEST)
+    body = _unpack(data, REQUEST, MAX_REQUEST_BYTES)
     op, args, rid, session = body.get("op"), body.get("args", {}), body.get("id", 0), body.get("s", 0)
     if not isinstance(op, str) or not isinstance(args, dict) or not isinstance(rid, int) \
             or not isinstance(session, int):
@@ -97,7 +108,7 @@ def encode_response(response: Response) -> bytes:
 
 
 def decode_response(data: bytes) -> Response:
-    body = _unpack(data, ANSWER)
+    body = _unpack(data, ANSWER, MAX_ANSWER_BYTES)
     rid, ok = body.get("id"), body.get("ok")
     if not isinstance(rid, int) or not isinstance(ok, bool):
         raise WireError("byte 8: an answer needs id (whole number) and ok (true/false)")

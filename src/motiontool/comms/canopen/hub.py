@@ -31,7 +31,9 @@ class HubBus(can.BusABC):
     def send(self, msg: can.Message, timeout: float | None = None) -> None:
         can_id = msg.arbitration_id
         for peer in self._peers:      # a list that only grows or shrinks by whole assignments (see shutdown)
-            if peer is not self and (peer.ids is None or can_id in peer.ids):
+            # `ids` are CANopen's 11-bit identifiers: a 29-bit frame with the same number is not for a node that
+            # asks for them (CiA 301 uses base frames; extended id 0 + 01 01 stopped node 1)
+            if peer is not self and (peer.ids is None or can_id in peer.ids and not msg.is_extended_id):
                 peer._queue.put(msg)
 
     def _recv_internal(self, timeout: float | None) -> tuple[can.Message | None, bool]:

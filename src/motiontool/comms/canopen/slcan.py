@@ -19,6 +19,7 @@ import contextlib
 import re
 import select
 import socket
+import sys
 import threading
 import time
 from collections import deque
@@ -31,6 +32,8 @@ OK, ERROR = b"\r", b"\a"
 VERSION, SERIAL = b"V1013\r", b"NMT15\r"
 READ_SIZE = 65536
 MAX_QUEUED = 1 << 20        # bytes waiting for one client (~45 000 frames) before its frames are dropped
+MAX_CLIENTS = 16            # adapters' clients at once; more are closed at once
+MAX_LINE = 64               # the longest slcan line is 30 characters (T, 8 id, dlc, 16 data, 4 stamp)
 
 
 def open_local_bus(interface: str, channel: str, ids: set[int] | None = None) -> can.BusABC:
@@ -55,27 +58,28 @@ def frame_text(msg: can.Message, stamp: bool = False) -> bytes:
     return head.encode("ascii") + OK
 
 
+_HEX = frozenset("0123456789abcdefABCDEF")
+
+
 def parse_frame(line: str) -> can.Message | None:
-    """A ``t``/``T``/``r``/``R`` command → message; None when it is malformed."""
+    """A ``t``/``T``/``r``/``R`` command → message; None when it is malformed: anything but hex digits (a sign, a
+    space), an id beyond 11/29 bits, a DLC beyond 8, missing data, or characters after the frame other than a
+    4-digit time stamp."""
     kind = line[:1]
     extended = kind in ("T", "R")
     width = 8 if extended else 3
-    try:
-        can_id = int(line[1:1 + width], 16)
-        dlc = int(line[1 + width], 16)
-    except (ValueError, IndexError):
+    digits = line[1:]
+    if kind not in ("t", "T", "r", "R") or not digits or not set(digits) <= _HEX or len(digits) < width + 1:
         return None
+    can_id, dlc = int(digits[:width], 16), int(digits[width], 16)
     if dlc > 8 or can_id > (0x1FFFFFFF if extended else 0x7FF):
+        return None
+    data_digits = 0 if kind in ("r", "R") else 2 * dlc
+    if len(digits) - width - 1 - data_digits not in (0, 4):   # nothing after the data but a time stamp
         return None
     if kind in ("r", "R"):
         return can.Message(arbitration_id=can_id, is_extended_id=extended, is_remote_frame=True, dlc=dlc)
-    hexdata = line[2 + width:2 + width + 2 * dlc]
-    try:
-        data = bytes.fromhex(hexdata)
-    except ValueError:
-        return None
-    if len(data) != dlc:
-        return None
+    data = bytes.fromhex(digits[width + 1:width + 1 + data_digits])
     return can.Message(arbitration_id=can_id, is_extended_id=extended, data=data)
 
 
@@ -131,7 +135,11 @@ class _Client:
                     break
                 buffer += chunk
                 *lines, buffer = buffer.split(b"\r")
-                answers = [self.command(line.decode("ascii", "replace").strip()) for line in lines if line.strip()]
+                answers = [self.command(line.decode("ascii", "replace").strip()) if len(line) <= MAX_LINE
+                           else ERROR for line in lines if line.strip()]
+                if len(buffer) > MAX_LINE:   # no CR in sight: not slcan; refused, and not kept
+                    buffer = b""
+                    answers.append(ERROR)
                 if answers:
                     self.write(b"".join(answers))
         except OSError:
@@ -180,6 +188,7 @@ class SlcanServer:
         self.clients: list[_Client] = []
         self._clients_lock = threading.Lock()
         self.frames_in = self.frames_out = 0
+        self.refused = 0
         self.on_disconnect: list = []          # called with the node ids whose SDO client went away
         self._sdo_clients: dict[int, _Client] = {}   # node id → the client that sent its last SDO request
         self._listener = socket.create_server((host, port))
@@ -199,6 +208,15 @@ class SlcanServer:
                 sock, _ = self._listener.accept()
             except OSError:
                 return
+            with self._clients_lock:
+                full = len(self.clients) >= MAX_CLIENTS
+            if full:
+                sock.close()
+                if not self.refused:
+                    print(f"motiontool drive: canopen:slcan:{self.url}: a connection was refused: {MAX_CLIENTS} "
+                          "clients are connected already", file=sys.stderr, flush=True)
+                self.refused += 1
+                continue
             sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
             client = _Client(self, sock)
             with self._clients_lock:
@@ -326,6 +344,8 @@ class SlcanSocketBus(can.BusABC):
         if not chunk:
             raise can.CanOperationError("the slcan server closed the connection")
         *lines, self._buffer = (self._buffer + chunk).split(b"\r")
+        if len(self._buffer) > MAX_LINE:     # an adapter that sends no CR is not speaking slcan: not kept
+            self._buffer = b""
         self._lines.extend(line.decode("ascii", "replace").strip("\a\n ") for line in lines)
         return bool(lines)
 

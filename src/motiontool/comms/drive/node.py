@@ -100,6 +100,8 @@ class DriveNode:
                 response = self.service.handle(request)
         except (ValueError, TypeError) as exc:
             return Response(request.id, False, error=str(exc))
+        except Exception as exc:  # noqa: BLE001 - a malformed request is refused to its master only
+            return Response(request.id, False, error=f"{op}: request refused ({type(exc).__name__}: {exc})")
         if op == "identify" and response.ok:
             response.value = {**response.value, **self.drive.identity(self.node)}
         return response

@@ -29,6 +29,8 @@ from motiontool.kernel.simulation import Simulation
 CLOCKS = ("realtime", "virtual")
 REACTIONS = ("none", "stop")
 BURST = 200           # ticks computed at most in one go when the clock thread fell behind
+MAX_ADVANCE_MS = 60_000   # one `advance` request; `run --link` asks 50 ms at a time
+ADVANCE_SLICE_MS = 50     # advanced under the lock at a time
 
 
 class VirtualDrive:
@@ -79,8 +81,14 @@ class VirtualDrive:
         """Virtual clock: `ms` ticks on every node now. A real-time drive refuses: its clock is the wall's."""
         if self.clock != "virtual":
             raise ValueError("advance: this drive runs in real time (start it with --clock virtual to step it)")
-        with self.lock:
-            self.simulation.run_for(ms)
+        if not 0 <= ms <= MAX_ADVANCE_MS:
+            raise ValueError(f"advance: {ms} ms; one request advances 0..{MAX_ADVANCE_MS} ms")
+        done = 0
+        while done < ms:   # in slices, the lock let go between them: other masters are served meanwhile
+            n = min(ADVANCE_SLICE_MS, ms - done)
+            with self.lock:
+                self.simulation.run_for(n)
+            done += n
 
     def start(self) -> None:
         if self.clock == "realtime" and self._thread is None:

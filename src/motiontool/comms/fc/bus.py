@@ -81,6 +81,14 @@ class FcBus:
         self.closed = False
         self.stats = BusStatistics()
         self._reader = TelegramReader()
+        # one extension message at a time per node: a slave keeps one chunk channel per address and connection,
+        # so two links of this process to one node must not interleave their frames (a long `advance` answered
+        # BUSY, fetched later, got another link's answer)
+        self._node_locks: dict[int, threading.Lock] = {}
+
+    def node_lock(self, address: int) -> threading.Lock:
+        with self.lock:
+            return self._node_locks.setdefault(address, threading.Lock())
 
     @classmethod
     def open(cls, settings: BusSettings, wrap: Callable | None = None) -> FcBus:

@@ -57,11 +57,15 @@ class FcLink(RemoteLink):
         self.address = address
         self.adr = encode_address(address, fmt=fmt)
         self.channel = MasterChannel(self._transfer, MAX_CHUNK, first_seq=random.getrandbits(16))
-        super().__init__(self.channel.exchange, f"{bus.description} #{address}", poll_interval_s)
+        super().__init__(self._exchange_message, f"{bus.description} #{address}", poll_interval_s)
         # a status request and its answer are ~230 bytes: at most a tenth of the line (2.6 s at 9600 baud)
         self.status_interval_s = 10 * wire_time(230, bus.settings.baud) if bus.serial_line else 0.0
 
     # --- the extension ---------------------------------------------------------------------------------
+    def _exchange_message(self, message: bytes) -> bytes:
+        with self.bus.node_lock(self.address):
+            return self.channel.exchange(message)
+
     def _transfer(self, frame):
         # a refusal of the extension names its PNU; one of another parameter is a late answer to something else
         reply = self.bus.transact(frame_telegram(self.adr, frame), lambda t: (is_frame(t) and t.ind == frame.seq) or (

@@ -17,6 +17,7 @@ import contextlib
 import os
 import select
 import socket
+import sys
 import threading
 import time
 from collections.abc import Callable
@@ -48,6 +49,7 @@ from motiontool.paramdb import ParameterError, database
 
 WRITES = (AK_WRITE_WORD, AK_WRITE_DWORD, AK_WRITE_WORD_EEPROM, AK_WRITE_DWORD_EEPROM)
 BUSY_AFTER_S = 0.02       # an extension request still running after this is answered BUSY
+MAX_CONNECTIONS = 16      # masters at once on the TCP listener (a serial converter takes a few); more are closed
 GAP_S = 0.05              # a partial telegram older than this is dropped (a character time-out, as UARTs do)
 
 
@@ -152,6 +154,7 @@ class _Serving:
 
     def _spawn(self, target: Callable, *args) -> None:
         thread = threading.Thread(target=target, args=args, daemon=True, name=f"fc-{target.__name__}")
+        self._threads = [t for t in self._threads if t.is_alive()]   # a connection's thread is kept while it serves
         self._threads.append(thread)
         thread.start()
 
@@ -165,6 +168,7 @@ class FcSocketListener(_Serving):
     def __init__(self, drive, host: str, port: int, baud: int | None):
         super().__init__()
         self.drive, self.baud = drive, baud
+        self.refused = 0
         self.server = socket.create_server((host, port))
         self.server.settimeout(0.1)
         host, port = self.server.getsockname()[:2]
@@ -179,6 +183,14 @@ class FcSocketListener(_Serving):
                 continue
             except OSError:
                 return
+            serving = sum(t.is_alive() for t in self._threads) - 1       # less this accepting thread
+            if serving >= MAX_CONNECTIONS:
+                conn.close()
+                if not self.refused:
+                    print(f"motiontool drive: {self.url}: a connection was refused: {MAX_CONNECTIONS} masters are "
+                          "connected already", file=sys.stderr, flush=True)
+                self.refused += 1
+                continue
             conn.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
             self._spawn(self._serve, conn)
         self.server.close()
