@@ -12,11 +12,11 @@ import zlib
 import pytest
 
 from motiontool.comms import chunks
-from motiontool.comms.chunks import ACK, BUSY, DATA, ERROR, Frame, MasterChannel, SlaveChannel
 from motiontool.comms.canopen.slcan import parse_frame
+from motiontool.comms.chunks import ACK, BUSY, DATA, ERROR, Frame, MasterChannel, SlaveChannel
 from motiontool.comms.links import open_link
 from motiontool.comms.protocol import LinkError
-from motiontool.comms.wire import HEADER, MAX_REQUEST_BYTES, REQUEST, VERSION, FLAG_ZLIB, decode_response
+from motiontool.comms.wire import FLAG_ZLIB, HEADER, MAX_REQUEST_BYTES, REQUEST, VERSION, decode_response
 from tests.comms.drive_process import drive_process
 
 CANOPEN = "canopen:slcan:socket://127.0.0.1:0"
