@@ -75,6 +75,14 @@ class CTSyncLine:
                 sent = d.ctsync_out
         self._in_flight = sent
 
+    @property
+    def period_ns(self) -> int:
+        """The line's POS period: the first node's #81.12 as of its last REINIT (every node must run it, L2077)."""
+        return self.drives[0].period_ns
+
     def run_ms(self, ms: float) -> None:
-        for _ in range(round(ms * 1000 / self.drives[0].period_us)):
+        """The line's samples within the next `ms` milliseconds, the period read before each (as ApcDrive.run_ms)."""
+        first = self.drives[0]
+        end = first.time_ns + round(ms * 1_000_000)
+        while first.time_ns + first.period_ns <= end:
             self.tick()

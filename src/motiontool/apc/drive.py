@@ -22,7 +22,7 @@ from motiontool.apc.commands_refs import ReferenceCommands
 from motiontool.apc.core import APC_VERSION, KernelCore
 from motiontool.apc.plant import PlantConfig
 from motiontool.apc.readpars import READ_PARAMETERS, parameter_number
-from motiontool.apc.units import EmbeddedConverter, UserDefinedConverter
+from motiontool.apc.units import EmbeddedConverter, UserDefinedConverter, pos_rate_code
 
 
 class ApcDrive(ControlCommands, ReferenceCommands, KernelCore):
@@ -44,8 +44,10 @@ class ApcDrive(ControlCommands, ReferenceCommands, KernelCore):
 
     # --- running ---------------------------------------------------------------------------------------------
     def run_ms(self, ms: float) -> None:
-        """Tick for `ms` milliseconds of POS samples."""
-        for _ in range(round(ms * 1000 / self.period_us)):
+        """Tick the POS samples that fall within the next `ms` milliseconds; the period is read before each sample,
+        so a REINIT by a task acts from the next sample on (L4678-4723)."""
+        end = self.time_ns + round(ms * 1_000_000)
+        while self.time_ns + self.period_ns <= end:
             self.tick()
 
     def read(self, key: int | str) -> int:
@@ -84,7 +86,7 @@ class ApcDrive(ControlCommands, ReferenceCommands, KernelCore):
             0: lambda: int(self.run_mode == 2), 1: lambda: int(self.absolute_mode),
             2: lambda: self.position_reset_offset, 3: lambda: int(self.reset_sources_on_disable),
             4: lambda: self.enabled, 5: lambda: self.reset_status, 6: lambda: self.ref_reset_offset,
-            13: lambda: self.params.values.get((81, 12), 3) - 1, 14: lambda: self.turns_bits,
+            13: lambda: pos_rate_code(self.period_us) - 1, 14: lambda: self.turns_bits,   # in force (REINIT)
             15: lambda: APC_VERSION,
             60: lambda: int(dl.rigid), 61: lambda: dl.mode, 62: lambda: dl.ratio.numerator,
             63: lambda: dl.ratio.denominator, 64: lambda: dl.lock_speed, 65: lambda: dl.lock_position,

@@ -10,6 +10,7 @@ from __future__ import annotations
 import threading
 from collections.abc import Iterable
 
+from motiontool.apc.clock import PosClock
 from motiontool.apc.ctsync import CTSyncLine
 from motiontool.apc.drive import ApcDrive
 from motiontool.comms.apc_service import ApcService
@@ -21,11 +22,12 @@ class ApcLineBus:
         self.line = CTSyncLine(drives, four_wire=four_wire)
         self.lock = threading.RLock()   # NodeLink: one request on the line at a time, whichever thread asks
         self.closed = False
-        self._us = 0
+        self._clock = PosClock()
         self.links: dict[int, NodeLink] = {}
         for node, drive in enumerate(self.line.drives, start=1):
-            # the bus, not the node, runs the POS samples: a node's service only keeps its clock and streams
-            self.links[node] = NodeLink(self, node, ApcService(drive, advance=lambda: None))
+            # the bus, not the node, runs the POS samples and time slices: a node's service keeps its clock and
+            # streams
+            self.links[node] = NodeLink(self, node, ApcService(drive, runs_samples=False))
 
     @property
     def nodes(self) -> list[int]:
@@ -37,16 +39,18 @@ class ApcLineBus:
         return self.links[node]
 
     def advance(self, ms: int) -> None:
-        period = self.line.drives[0].period_us
+        """`ms` milliseconds of the line: its samples, the line's period read before each (apc/clock.py), every
+        node's Initial/Background slice before each sample."""
+        services = [link.service for link in self.links.values()]
+
+        def time_slice() -> None:
+            for service in services:
+                service.slice()
         for _ in range(int(ms)):
-            self._us += 1000
-            while self._us >= period:
-                self._us -= period
-                for link in self.links.values():
-                    link.service.slice()        # every node's Initial/Background before the sample
-                self.line.tick()
-            for link in self.links.values():
-                link.service.tick()
+            now = (services[0].time_ms + 1) * 1_000_000
+            self._clock.run_until(now, self.line, time_slice, self.line.tick)
+            for service in services:
+                service.tick()
 
     def close(self) -> None:
         self.closed = True

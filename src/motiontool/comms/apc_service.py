@@ -20,6 +20,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
+from motiontool.apc.clock import PosClock
 from motiontool.apc.drive import ApcDrive
 from motiontool.apc.readpars import parameter_number
 from motiontool.comms.embedded import EmbeddedLink
@@ -47,17 +48,20 @@ class ApcService:
 
     kind = "APC"
 
-    def __init__(self, drive: ApcDrive | None = None, *, advance: Callable[[], None] | None = None):
+    def __init__(self, drive: ApcDrive | None = None, *, advance: Callable[[], None] | None = None,
+                 runs_samples: bool = True):
         """`advance` runs one POS sample of the whole machine (a CTSync line ticks every node); by default the
-        drive's own tick."""
+        drive's own tick. `runs_samples=False`: something else (ApcLineBus) runs the samples and the time slices;
+        the service keeps its clock and streams."""
         self.drive = drive or ApcDrive()
         self._run_sample = advance or self.drive.tick
+        self._runs_samples = runs_samples
+        self._clock = PosClock()
         self.listeners: list[Callable[[LinkEvent], None]] = []
         self.program: Any = None                      # the DPL program host, if any
         self.arrays: list[tuple[str, list]] = []      # the program's arrays, in declaration order
         self.errors: list[dict] = []
         self.time_ms = 0
-        self._us = 0
         self.stream_signals: list[tuple[str, Callable[[], int]]] = []
         self.stream_interval = 0
         self._stream_times: list[int] = []
@@ -80,10 +84,6 @@ class ApcService:
         if program is not None and hasattr(program, "slice"):
             program.slice()
 
-    def _advance(self) -> None:
-        self.slice()
-        self._run_sample()
-
     def _drive_event(self, kind: str, details: dict) -> None:
         number = details.get("code", 0) if kind == "error" else 81 if details.get("trip") == "Tr81" else 44
         self.errors.append({"time_ms": self.time_ms, "kind": kind, "number": number, "text": details.get("text", "")})
@@ -97,13 +97,11 @@ class ApcService:
 
     # --- time ------------------------------------------------------------------------------------------------------
     def tick(self) -> None:
-        """One millisecond: as many POS samples as fall into it (four at 250 µs, one every 2nd ms at 2 ms)."""
+        """One millisecond: as many POS samples as fall into it (four at 250 µs, one every 2nd ms at 2 ms), each
+        after its time slice; the period is read before each sample (apc/clock.py)."""
         self.time_ms += 1
-        self._us += 1000
-        period = self.drive.period_us
-        while self._us >= period:
-            self._us -= period
-            self._advance()
+        if self._runs_samples:
+            self._clock.run_until(self.time_ms * 1_000_000, self.drive, self.slice, self._run_sample)
         if self.stream_signals and self.time_ms % self.stream_interval == 0:
             self._stream_times.append(self.time_ms)
             self._stream_buffer.append([read() for _, read in self.stream_signals])
