@@ -3,7 +3,9 @@
 import pytest
 
 from motiontool.aposs.diagnostics import CompileError, Diagnostic
+from motiontool.aposs.driver import compile_source
 from motiontool.aposs.lexer import DIRECTIVE, FLOAT, IDENT, INT, NEWLINE, STRING, tokenize
+from tests.kernel.helpers import run_source
 
 
 def kinds(text):
@@ -55,6 +57,21 @@ def test_bit_suffix_after_a_name_is_not_a_double():
     assert kinds("Value.3 arr[1].b1 0x027F.b2") == [
         (IDENT, "VALUE"), ("OP", "."), (INT, 3), (IDENT, "ARR"), ("OP", "["), (INT, 1), ("OP", "]"),
         ("OP", "."), (IDENT, "B1"), (INT, 0x027F), ("OP", "."), (IDENT, "B2")]
+
+
+def test_the_bit_table_example_7_1_is_a_double_and_the_warning_shows_the_bit_form():
+    """DG 6734-6738 prints "expr1.expr2 7.1 = 1 7.3 = 1 7.4 = 0  Returns the Bit expr2 from expr1", but DG 6565-6577
+    prints 0.5, 15.0, -100.00 as DOUBLE constants: no lexical rule tells 7.1 from 1.5, so `7.1` stays a DOUBLE and a
+    LONG that receives it is told how to write the bit, when the number has that bit (decision L2; `x = 2.5` keeps
+    the plain warning, test_diagnostics.py). The table's values hold in that form."""
+    assert kinds("7.1 0.5") == [(FLOAT, 7.1), (FLOAT, 0.5)]
+    result = compile_source("x = 7.1\nd = 2.75\n", "t.m")
+    assert [d.message for d in result.diagnostics] == [
+        "the DOUBLE value is truncated to store it in LONG 'x'; write (long) to say so; 7.1 is a DOUBLE constant: "
+        "bit 1 of 7 is written (7).1",
+        "the DOUBLE value is truncated to store it in LONG 'd'; write (long) to say so"]
+    run = run_source("PRINT (7).1, \" \", (7).3, \" \", (7).4\n", 100)
+    assert run.prints == ["1 1 0"]
 
 
 def test_comments_and_locations():

@@ -321,7 +321,7 @@ class CodeGen(ExpressionCode):
 
     def s_Assign(self, s: ast.Assign) -> None:
         target = self.stable(s.target) if isinstance(s.target, ast.BitSel) else s.target
-        self.store(target, lambda: self.expr(s.value))
+        self.store(target, lambda: self.expr(s.value), s.value)
 
     def s_ArrayCopy(self, s: ast.ArrayCopy) -> None:
         dest = self.array(s.dest, s.dest_text, s.loc)
@@ -475,14 +475,15 @@ class CodeGen(ExpressionCode):
         self.emit(Op.INTR, len(self.img.interrupts) - 1)
 
     # --- stores -------------------------------------------------------------------------------------
-    def store(self, target: ast.Expr, value) -> None:
-        """Store the value that `value()` pushes into target (converted to the target's type)."""
+    def store(self, target: ast.Expr, value, source: ast.Expr | None = None) -> None:
+        """Store the value that `value()` pushes into target (converted to the target's type); `source`: the
+        expression assigned, if any."""
         if isinstance(target, ast.Name):
             sym = self.scalar(target.name, target.text, target.loc, assigning=True)
             have = value()
             if have == DOUBLE and sym.type == LONG:
                 self.sink.warning(f"the DOUBLE value is truncated to store it in LONG '{target.text}'; write "
-                                  "(long) to say so", target.loc)
+                                  f"(long) to say so{_bit_hint(source)}", target.loc)
             self.convert(have, sym.type)
             self.emit(Op.STOREL if sym.kind == "local" else Op.STOREG, sym.slot)
         elif isinstance(target, ast.Index):
@@ -548,3 +549,13 @@ def _assigned_names(program: ast.Program) -> set[str]:
                 if isinstance(e, (ast.OutRef, ast.PostIncrement)) and isinstance(e.target, ast.Name):
                     names.add(e.target.name)
     return names
+
+
+def _bit_hint(source: ast.Expr | None) -> str:
+    """DG 6734-6738 prints `7.1 = 1` (bit 1 of 7), written before DOUBLE constants (DG 6565-6577) existed (L2)."""
+    if isinstance(source, ast.Num) and isinstance(source.value, float):
+        whole, _, bit = repr(source.value).partition(".")
+        # only a bit the number has (7.1, 7.3): 2.5 or 0.5 as a bit test would be pointless, so it meant a DOUBLE
+        if bit.isdigit() and bit[0] != "0" and whole.isdigit() and 1 <= int(bit) <= int(whole).bit_length():
+            return f"; {source.value!r} is a DOUBLE constant: bit {bit} of {whole} is written ({whole}).{bit}"
+    return ""
