@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import os
 import signal
+from array import array
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 
@@ -68,14 +69,14 @@ def one_line(text: str) -> str:
 def _run_point(job: SweepJob, values: tuple[int, ...]) -> Row:
     measures = [parse(text) for text in job.measures]
     signals = job.signals()
-    times: list[int] = []
-    rows: list[list[float]] = []
+    times, samples = array("d"), array("d")  # 8 bytes a value, no object per row: an hour of 3 signals is 115 MB
     errors: list[str] = []
 
     def on_event(event: LinkEvent) -> None:
         if event.kind == "samples":
             times.extend(event.data["time_ms"])
-            rows.extend(event.data["values"])
+            for row in event.data["values"]:
+                samples.extend(row)
         elif event.kind == "error" and not errors:  # the first error stops the program; later ones follow from it
             errors.append(event.text + (f" (line {event.line})" if event.line else ""))
 
@@ -104,8 +105,8 @@ def _run_point(job: SweepJob, values: tuple[int, ...]) -> Row:
         link.flush_events()
     finally:
         close()
-    t = np.asarray(times, dtype=float) - time_base
-    table = np.asarray(rows, dtype=float).reshape(len(rows), len(signals))
+    t = np.frombuffer(times, dtype=float) - time_base
+    table = np.frombuffer(samples, dtype=float).reshape(len(times), len(signals))
     series = {name: table[:, k] for k, name in enumerate(signals)}
     out, problems = [], list(errors)
     for n, measure in enumerate(measures, start=1):
