@@ -108,6 +108,21 @@ def test_the_manuals_segmented_read_of_an_fc_parameter_fails_as_the_manual_handl
     assert prints(sim, 1)[-1] == "Read of 1549 failed - error -2"
 
 
+def test_the_c23_example_reads_parameter_1549_as_object_0x2000_plus_1549():
+    """CR 3716-3717: "index = 0x2000  subindex = parameter number"; CR 3748-3749 (C23): `subindex = 1549 // Sw
+    Version`, `value = SDOREADSEG id, 0x2000, subindex, test`. 1549 cannot be an 8-bit sub-index: it addresses
+    object 0x2000 + 1549 = 0x260D, sub 0, as C24 writes it (CR 3800), instead of error 183 before anything is sent
+    (K116 revised). Node 3 is a simulated MCO without FC 300 parameter objects, so the node aborts the transfer;
+    SDOREADSEG with a positive id waits and reports the abort as error 189 naming the object."""
+    sim = bus({1: (MANUAL / "C23_sdoreadseg.m").read_text(), 3: ""})
+    sim.run_for(300)
+    assert [(e.number, e.detail) for e in sim[1].error_history] == [
+        (189, "SDO to node 3, object 0x260D/0: aborted with code 0x06020000")]
+    sim = bus({1: "DIM test[20]\nx = SDOREADSEG 3, 0x2001, 300, test\n", 3: ""})   # not 0x2000: still refused
+    sim.run_for(100)
+    assert [e.number for e in sim[1].error_history] == [183]
+
+
 def test_out_and_in_above_256_address_the_io_of_another_controller():
     """DG 7363-7365: "If you specify a number bigger than 256, then automatically a CAN I/O is assumed. So by using
     the command OUT 257 1 you can set the output number 1 on the CAN I/O module with the Node ID 1." A simulated

@@ -164,14 +164,21 @@ def sdowrite(ctl, vm, args):
     return _sdo(ctl, vm, "write", args[0], args[1], args[2], value=args[3])
 
 
+def _fc_parameter_object(index: int, sub: int) -> tuple[int, int]:
+    """CR 3716-3717, 3762-3763: "index = 0x2000  subindex = parameter number". A parameter number that cannot be a
+    sub-index (above 0xFF, the C23 example's 1549) addresses object 0x2000 + number, sub 0: the form of the C24
+    example (CR 3800 `(0x2000 + para), 0`) and of the FC 300 on CANopen (K116)."""
+    return (0x2000 + sub, 0) if index == 0x2000 and sub > 0xFF else (index, sub)
+
+
 @command("SDOREADSEG")
 def sdoreadseg(ctl, vm, args):
-    return _sdo(ctl, vm, "seg", args[0], args[1], args[2], array=args[3])
+    return _sdo(ctl, vm, "seg", args[0], *_fc_parameter_object(args[1], args[2]), array=args[3])
 
 
 @command("SDOREADSEGP")
 def sdoreadsegp(ctl, vm, args):
-    return _sdo(ctl, vm, "segp", args[0], args[1], args[2], array=args[3])
+    return _sdo(ctl, vm, "segp", args[0], *_fc_parameter_object(args[1], args[2]), array=args[3])
 
 
 @command("SDOSTATE")

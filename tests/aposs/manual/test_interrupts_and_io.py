@@ -145,7 +145,7 @@ def test_c23_segmented_sdo_read_prints_the_string_character_by_character():
     """CR 3712-3751 (C23): SDOREADSEG "delivers the result in the array given as parameter … one byte of the segmented
     data (character) in one array element"; printstring prints them with `PRINT chr(arr[ind]);` — one line, no
     blanks between the characters (K48). Node 3 is a simulated MCO: the program reads its device name (0x1008)
-    instead of an FC 300's software version (object 0x2000, sub 1549, which an MCO does not have)."""
+    instead of an FC 300's software version (object 0x2000 + 1549, K116, which an MCO does not have)."""
     from tests.kernel.can_helpers import bus, prints
 
     text = source("C23_sdoreadseg.m")
