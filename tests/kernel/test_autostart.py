@@ -50,6 +50,22 @@ def test_prgpar_chains_programs():
     assert printed[:3] == ["home", "work", "work"]
 
 
+def test_a_programs_set_values_revert_at_its_end_but_prgpar_stays():
+    """CR 3898: "The parameter alterations are only valid while the program is running. After program end or abort,
+    the original parameter values are valid again." DG 2772: "The currently executing program simply needs to set
+    Activated Program Number to specify which program is to be executed next. Note that if Activated Program Number
+    is not reset, then the current program will be executed repeatedly" - which holds only if the program's SET of
+    33-80 outlives its end (decision K22): KPROP reverts, PRGPAR does not."""
+    ctl, store, printed = _setup()
+    kprop = ctl.params["KPROP"]
+    store.save(0, _image('SET KPROP 77\nSET PRGPAR 5\nPRINT GET KPROP\n', "home"))
+    store.save(5, _image('PRINT "work ", GET KPROP, " ", GET PRGPAR\nDELAY 50\n', "work"))
+    store.set_autostart(0)
+    store.power_on(ctl)
+    _run(ctl, store, 120)
+    assert printed[:3] == ["77", f"work {kprop} 5", f"work {kprop} 5"]
+
+
 def test_break_deactivates_but_a_position_error_does_not():
     """DG 2744-2757: a user break deactivates the mechanism; errors 108, 125 and 111 do not."""
     ctl, store, printed = _setup()

@@ -128,7 +128,11 @@ ENDPROG
 
 
 def test_retrigger_during_own_handler_runs_once_afterwards():
-    """Decision K3 (DG 6367-6371): a repeat while the handler runs is remembered once."""
+    """Decision K3: DG 6369-6371 "If the same input or interrupt occurs again while the procedure is being executed
+    this is noted again and subsequently executed. Thus, an interrupt can only be lost if it occurs twice during the
+    execution of an interrupt procedure"; CR 1119-1120 "keeps upcoming interrupt requests still in mind … the
+    upcoming stored interrupts will be executed yet" (against the page notes, e.g. CR 2715-2717 "ignored and thus
+    lost"). Three edges during the first 300 ms handler: the second runs afterwards, the third is lost."""
     src = "n = 0\nON INT 5 GOSUB slow\nDELAY 1000\nPRINT n\nSUBMAINPROG\nSUBPROG slow\nn = n + 1\nDELAY 300\n" \
           "RETURN\nENDPROG\n"
     inputs = [(5, 1, 10), (5, 0, 20), (5, 1, 30), (5, 0, 40), (5, 1, 50), (5, 0, 60)]
@@ -150,7 +154,8 @@ ENDPROG
 
 def test_on_mapos_calls_the_subprogram_when_the_master_passes_the_position():
     """CR 2930-2931: "ON MAPOS .. GOSUB Call up a subprogram when the master position xxx … has been passed in
-    positive or negative direction"; DG 7158: "ON MAPOS = when the master position xxx [qc] is passed" (K46).
+    positive or negative direction"; DG 7158: "ON MAPOS = when the master position xxx [qc] is passed", CR 2934
+    "after Master has reached 2200 qc" (K46: qc, not the "(MU)" of CR 2930).
     The virtual master (PULSVEL 10000 = 40 qc/ms) passes 10000 qc forward, then backward; the gear 3:1 shows the
     position is in qc, not MU."""
     run = run_source("ON +MAPOS 10000 GOSUB up\nON -MAPOS 10000 GOSUB down\nPULSVEL 10000\nDELAY 500\n"
