@@ -23,7 +23,9 @@ from motiontool.kernel.errors import ControllerError
 CANNR = 3390
 # NMT states (CiA 301): the byte of heartbeat and node guarding answers
 BOOTUP, STOPPED, OPERATIONAL, PRE_OPERATIONAL = 0x00, 0x04, 0x05, 0x7F
-NMT_COMMANDS = {0x01: OPERATIONAL, 0x02: STOPPED, 0x80: PRE_OPERATIONAL, 0x81: BOOTUP, 0x82: BOOTUP}
+RESET_NODE, RESET_COMMUNICATION = 0x81, 0x82
+NMT_COMMANDS = {0x01: OPERATIONAL, 0x02: STOPPED, 0x80: PRE_OPERATIONAL, RESET_NODE: BOOTUP,
+                RESET_COMMUNICATION: BOOTUP}
 MAX_MAILBOXES = 14          # object 15 belongs to CANINI 999 (CR 388-390)
 MAX_MODULES = 16            # CANINI: "A maximum of 16 modules can be stored internally" (CR 458)
 GUARD_PERIOD_MS, GUARD_TIMEOUT_MS = 20, 100   # CR 449-453
@@ -58,6 +60,7 @@ class CanPort:
         self._node_id: int | None = None
         self.nmt_state = BOOTUP
         self.heartbeat_ms = 0                 # 0x1017
+        self.reset_node_pending = False       # NMT Reset Node received: the host powers the controller off and on
         self._last_heartbeat = 0
         self._guard_toggle = 0
         self.guard_error_id = 0               # SYSVAR 67 / 0x2202 sub 0x44 (CR 471)
@@ -151,7 +154,7 @@ class CanPort:
 
     def receive(self, frame: CanFrame, now: int) -> None:
         can_id, node = frame.can_id, self.node_id
-        if can_id == 0 and not frame.rtr:
+        if can_id == 0 and not frame.rtr and not frame.extended:
             self._identifier_zero(frame.data)
             return
         for box in self.mailboxes.values():          # the first mailbox with the id takes it (CR 401-409)
@@ -163,6 +166,8 @@ class CanPort:
             if not box.receive and frame.rtr and box.sent:   # a transmit object answers a remote frame
                 self.send(CanFrame(can_id, box.data))
                 return
+        if frame.extended:   # CANopen's services use base frames (CiA 301): a 29-bit frame is for mailboxes only
+            return
         if self.capture is not None and 0x181 <= can_id <= 0x1FF and not frame.rtr:
             self.capture[can_id - 0x180] = (frame.data, True)
         if self.pdo.receive(frame, now, self.nmt_state == OPERATIONAL):
@@ -187,6 +192,14 @@ class CanPort:
             if data[1] in (0, self.node_id) and data[0] in NMT_COMMANDS:
                 self.nmt_state = NMT_COMMANDS[data[0]]
                 self.busy = True                     # a reset boots up again at the next tick
+                if data[0] in (RESET_NODE, RESET_COMMUNICATION):
+                    # CiA 301: the communication objects (0x1000-0x1FFF: heartbeat 0x1017, the PDOs) take their
+                    # power-on values again; RESET NODE also resets the application: the host powers the
+                    # controller off and on (decision N51)
+                    self.heartbeat_ms = 0
+                    self.pdo = PdoEngine(self)
+                    self.sdo.channels.clear()
+                    self.reset_node_pending = data[0] == RESET_NODE
             return
         self.global_message, self.global_new = bytes(data).ljust(8, b"\0"), True
         self.controller.interrupts.fire("CANINPUT")

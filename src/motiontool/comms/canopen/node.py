@@ -16,8 +16,23 @@ from motiontool.comms.canopen import objects
 from motiontool.comms.canopen.sdoblock import BlockSdoServer
 from motiontool.comms.protocol import Request
 from motiontool.kernel import objdict
+from motiontool.kernel.canport import STOPPED
 
 ABORT_GENERAL = 0x08000000
+ABORT_LENGTH_HIGH, ABORT_LENGTH_LOW = 0x06070012, 0x06070013
+
+
+def _check_length(data: bytes, datatype: str) -> None:
+    """A master writes a fixed-size object with exactly its size (CiA 301 7.2.4.3.3): two bytes into KPROP made it
+    16, four into the UNSIGNED16 0x1017 were taken. (The controllers' own SDOWRITE keeps the kernel's 1..4-byte
+    reading, DG 7382.)"""
+    size = objdict.DATATYPES[datatype][1]
+    if not size:          # strings and domains have the length they are given
+        return
+    if len(data) > size:
+        raise SdoAbortedError(ABORT_LENGTH_HIGH)
+    if len(data) < size:
+        raise SdoAbortedError(ABORT_LENGTH_LOW)
 
 
 class ControllerNode(canopen.LocalNode):
@@ -35,6 +50,11 @@ class ControllerNode(canopen.LocalNode):
     @property
     def controller(self):
         return self.drive_node.service.controller
+
+    @property
+    def stopped(self) -> bool:
+        """In NMT STOPPED the node serves no SDO (CiA 301 7.3.2.2); the NMT state is the controller's own."""
+        return self.controller.can.nmt_state == STOPPED
 
     # --- SDO server callbacks ----------------------------------------------------------------------------
     def get_data(self, index: int, subindex: int, check_readable: bool = False) -> bytes:
@@ -54,6 +74,7 @@ class ControllerNode(canopen.LocalNode):
         with self.drive.lock:
             try:
                 entry = objdict.find(index, subindex)
+                _check_length(bytes(data), entry.datatype)
                 objdict.write(self.controller, index, subindex, objdict.decode(bytes(data), entry.datatype), "sdo")
             except objdict.ObjectError as exc:
                 raise SdoAbortedError(exc.code) from None

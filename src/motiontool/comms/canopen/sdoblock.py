@@ -33,6 +33,13 @@ class BlockSdoServer(SdoServer):
         self._block = None
 
     def on_request(self, can_id, data, timestamp):
+        if getattr(self._node, "stopped", False):   # CiA 301: no SDO in STOPPED; the client's request times out
+            return
+        if len(data) != 8:   # an SDO frame has 8 bytes: python-canopen's server printed a traceback for a short one
+            if self._block is None and data:
+                head = bytes(data[1:4]).ljust(3, b"\0")      # the object it names, as far as it names one
+                self.send_response(struct.pack("<BHBL", 0x80, head[0] | head[1] << 8, head[2], ABORT_COMMAND))
+            return
         now = time.monotonic()
         if self._block is not None and now - self._last > IDLE_S:
             self._block = None

@@ -89,6 +89,7 @@ class VirtualDrive:
             with self.lock:
                 self.simulation.run_for(n)
             done += n
+            self._reset_nodes()
 
     def start(self) -> None:
         if self.clock == "realtime" and self._thread is None:
@@ -120,8 +121,18 @@ class VirtualDrive:
             if due - ticks > 10 * BURST:  # far behind (a suspended process): do not race to catch up
                 ticks = due
             self._watch_timeout()
+            self._reset_nodes()
             if burst < BURST:
                 time.sleep(0.001)
+
+    def _reset_nodes(self) -> None:
+        """A node that received NMT Reset Node is switched off and on, as Controller ▸ Restart does (N51)."""
+        for node in self.nodes.values():
+            can = node.service.controller.can
+            if can.reset_node_pending:
+                with self.lock:
+                    can.reset_node_pending = False
+                    node.service.op_power_on()
 
     def _fault(self, exc: Exception) -> None:
         for node in self.nodes.values():
