@@ -183,3 +183,42 @@ def test_events_that_reach_nobody_are_kept_for_the_link_that_resumes_the_session
     n = int(ticks_first[-1].split()[1])
     assert ticks_second == [f"tick {i}" for i in range(n + 1, n + 1 + len(ticks_second))]
     assert len(ticks_first) + len(ticks_second) >= 9
+
+
+def test_an_fc_link_comes_back_when_its_drive_restarts():
+    """Issue 24 item 9: a CANopen link reopened after its drive restarted, an FcLink stayed closed for good ('is
+    closed' at every request). The bus opens its port again on the next request after a failure."""
+    import socket
+
+    from motiontool.comms.links import open_link
+    from motiontool.comms.protocol import ConnectionLost
+    from tests.comms.drive_process import DriveProcess
+
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    listen = f"fc:socket://127.0.0.1:{port}"
+    first = DriveProcess("--node", "1", listen=listen)
+    link = open_link(first.url + "#1,timeout=0.2,retries=1")
+    second = None
+    try:
+        assert link.status().program_state == "idle"
+        first.proc.kill()
+        first.proc.wait(10)
+        with pytest.raises(ConnectionLost):
+            link.status()
+        second = DriveProcess("--node", "1", listen=listen)
+        assert second.url
+        deadline = time.monotonic() + 10
+        while True:
+            try:
+                assert link.status().program_state == "idle"
+                break
+            except ConnectionLost:
+                assert time.monotonic() < deadline, "the link did not come back within 10 s"
+                time.sleep(0.2)
+        assert link.alive
+    finally:
+        link.close()
+        if second is not None:
+            second.stop()

@@ -35,6 +35,7 @@ from motiontool.comms.fc.telegram import (
 from motiontool.comms.protocol import ConnectionLost, LinkError
 
 READ_TIMEOUT_S = 0.01      # one port read; the answer's deadline is checked between reads
+REOPEN_S = 0.5             # a port that failed is opened again at most this often
 SETTLE_S = 0.02            # after a damaged answer: time for whatever else is on its way before the next try
 DEFAULT_BAUD = 9600          # FC 300 8-32 factory setting
 PARITIES = {"E": "E", "EVEN": "E", "N": "N", "NONE": "N", "O": "O", "ODD": "O"}
@@ -85,6 +86,9 @@ class FcBus:
         # so two links of this process to one node must not interleave their frames (a long `advance` answered
         # BUSY, fetched later, got another link's answer)
         self._node_locks: dict[int, threading.Lock] = {}
+        self._wrap: Callable | None = None
+        self.broken = ""              # why the port failed (a converter or drive that went away): reopened on use
+        self._reopen_at = 0.0
 
     def node_lock(self, address: int) -> threading.Lock:
         with self.lock:
@@ -98,6 +102,7 @@ class FcBus:
             if bus is None or bus.closed:
                 port = _open_port(settings)
                 bus = cls(settings, wrap(port) if wrap else port)
+                bus._wrap = wrap
                 cls._open[settings.key()] = bus
             bus.users += 1
             return bus
@@ -116,6 +121,26 @@ class FcBus:
                     self.port.close()
             if FcBus._open.get(self.settings.key()) is self:
                 del FcBus._open[self.settings.key()]
+
+    def _break(self, why: str) -> None:
+        """The port failed (a TCP converter or a virtual drive that restarted, a USB adapter pulled): closed now and
+        opened again by the next telegram, so the links on it come back as a CANopen link does (issue 24 item 9)."""
+        self.broken = why or "the port failed"
+        with contextlib.suppress(OSError):
+            self.port.close()
+
+    def _reopen(self) -> None:
+        now = time.monotonic()
+        if now < self._reopen_at:      # not more often than every REOPEN_S: a dead port is not hammered
+            raise ConnectionLost(f"{self.description}: {self.broken}")
+        self._reopen_at = now + REOPEN_S
+        try:
+            port = _open_port(self.settings)
+        except LinkError as exc:       # _open_port names the port and the reason
+            raise ConnectionLost(f"{self.description}: {self.broken}; opening it again: {exc}") from None
+        self.port = self._wrap(port) if self._wrap else port
+        self._reader = TelegramReader()
+        self.broken = ""
 
     @property
     def serial_line(self) -> bool:
@@ -149,6 +174,8 @@ class FcBus:
         with self.lock:
             if self.closed:
                 raise ConnectionLost(f"{self.description} is closed")
+            if self.broken:
+                self._reopen()
             for attempt in range(retries + 1):
                 if attempt:
                     self.stats.repeats += 1
@@ -160,7 +187,7 @@ class FcBus:
                         return None
                     reply = self._read_reply(telegram, matches, wait)
                 except (OSError, ValueError) as exc:   # pyserial's SerialException is an OSError
-                    self.close()
+                    self._break(str(exc))
                     raise ConnectionLost(f"{self.description}: {exc}") from None
                 if isinstance(reply, Telegram):
                     return reply
