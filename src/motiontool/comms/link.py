@@ -80,9 +80,12 @@ class Link(ABC):
         self.call("download", image=base64.b64encode(image_bytes).decode("ascii"), number=number, name=name,
                   **extra)
 
-    def start(self, number: int | None = None, step: bool = False) -> None:
-        """Start a program; with `step` (Prepare Singlestep) it stops before its first statement."""
-        self.call("start", number=number, step=step)
+    def start(self, number: int | None = None, step: bool = False,
+              inputs: list[tuple[int, int, int]] | None = None) -> None:
+        """Start a program; with `step` (Prepare Singlestep) it stops before its first statement; `inputs`
+        (N, V, T) are set T ms after the start (sent only when given, so every controller still starts)."""
+        extra = {"inputs": [list(i) for i in inputs]} if inputs else {}
+        self.call("start", number=number, step=step, **extra)
 
     def break_program(self) -> None:
         self.call("break")

@@ -33,7 +33,8 @@ OPERATIONS: dict[str, tuple[str, ...]] = {
     "delete_program": ("number",),
     "set_autostart": ("number",),                    # Autostart on (number) / off (None)
     "power_on": (),                                  # simulated controllers: off and on (Autostart runs)
-    "start": ("number", "step"),                     # None = the temporary program; step: stop before statement 1
+    "start": ("number", "step", "inputs"),           # None = the temporary program; step: stop before statement 1;
+                                                     # inputs [[N, V, T ms after the start]] (Test-inputs)
     "break": (),                                     # [Esc]
     "continue": (),
     "set_input": ("number", "value"),                # simulated controllers only

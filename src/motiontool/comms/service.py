@@ -221,7 +221,17 @@ class ControllerService:
         self.store.power_on(c)
         self._set_stack_size(self.store.running)
 
-    def op_start(self, number=None, step=False) -> None:
+    def op_start(self, number=None, step=False, inputs=()) -> None:
+        """`inputs`: [[N, V, T], ...] set T ms after this start (a program header's Test-inputs applied by the IDE,
+        decision I23): timed from the start on the controller, so a paced simulator runs them as `run --input`."""
+        inputs = [(*_checked_input(n, v), int(t)) for n, v, t in inputs or ()]  # refused before anything starts
+        if any(t < 0 for _n, _v, t in inputs):
+            raise ValueError("an input time is before the start")
+        self._start(number, step)
+        for n, v, t in inputs:
+            self.controller.io.schedule(self.controller.time_ms + t, n, v)
+
+    def _start(self, number, step) -> None:
         program = self.temporary if number is None else self.programs.get(number)
         if program is None:
             raise ValueError("no program downloaded" if number is None else f"no program {number}")
@@ -250,16 +260,17 @@ class ControllerService:
         self.controller.continue_program()
 
     def op_set_input(self, number, value) -> None:
-        self.controller.io.inputs[int(number)] = 1 if value else 0
+        """Simulated controllers: a digital input 0/1, or an analog input 53/54 (the I/O panel, decision I23)."""
+        number, value = int(number), int(value)
+        io = self.controller.io
+        if number in ANALOG_INPUTS:
+            io.analog[number] = value
+        else:  # any number, as before: a scope test drives bit 16 of INPUTS
+            io.inputs[number] = 1 if value else 0
 
     def op_schedule_input(self, number, value, time_ms) -> None:
-        number, value, time_ms = int(number), int(value), int(time_ms)
-        if number in ANALOG_INPUTS:
-            pass
-        elif number not in MCO_INPUTS and number not in FC_INPUTS:
-            raise ValueError(f"no digital input {number} (MCO 305: 1-12, FC 300: 18-33; analog: 53, 54)")
-        elif value not in (0, 1):
-            raise ValueError(f"a digital input is 0 or 1, not {value}")
+        number, value = _checked_input(number, value)
+        time_ms = int(time_ms)
         if time_ms < 0:
             raise ValueError(f"time {time_ms} ms is before the start")
         self.controller.io.schedule(time_ms, number, value)
@@ -403,3 +414,17 @@ class ControllerService:
 
     def state(self) -> Any:
         return self.controller
+
+
+
+def _checked_input(number, value) -> tuple[int, int]:
+    """(input, value) a simulated controller can take: digital 0/1 on MCO 1-12 and FC 300 18-33; an analog input
+    53/54 takes any value (as `run --input` always let it: a wiring fault may read beyond INAD's range)."""
+    number, value = int(number), int(value)
+    if number in ANALOG_INPUTS:
+        pass
+    elif number not in MCO_INPUTS and number not in FC_INPUTS:
+        raise ValueError(f"no digital input {number} (MCO 305: 1-12, FC 300: 18-33; analog: 53, 54)")
+    elif value not in (0, 1):
+        raise ValueError(f"a digital input is 0 or 1, not {value}")
+    return number, value
