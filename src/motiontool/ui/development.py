@@ -196,8 +196,13 @@ class Development:
             if isinstance(outcome.result, CompileResult) and not self._arrays_fit(link, image, ask=ask):
                 return False
             stack = self.compiler_settings().stack_size if isinstance(outcome.result, CompileResult) else None
+            test = self._test_settings()   # the header's Test-settings/-inputs, when the user chose to apply them
+            if test is None:
+                return False
+            for key, value in test.settings:
+                link.write_parameter(key, value)
             link.download(image.to_bytes(), name=Path(image.name).name, stack_size=stack)
-            link.start()
+            link.start(inputs=test.inputs)
             self.ran[self.w.bridge.controller_id] = self.w.current_editor()
             self.images[self.w.bridge.controller_id] = getattr(outcome.result, "image", None)
         except LinkError as exc:
@@ -205,6 +210,21 @@ class Development:
             return False
         self.w.messages.ide(f"Executing {Path(image.name).name} on controller {self.w.bridge.controller_id}")
         return True
+
+    def _test_settings(self):
+        """Offer a header's test settings (ui/io_panel.py); what is to be applied, None for a header that cannot
+        be read when they are (said in the Communication window)."""
+        from motiontool.program_header import HeaderError
+        from motiontool.ui.io_panel import armed_test_settings, offer_test_settings
+
+        editor = self.w.current_editor()
+        label = Path(self.w.program_label(editor)).name
+        offer_test_settings(self.w, editor, label)
+        try:
+            return armed_test_settings(self.w, editor, label)
+        except HeaderError as exc:
+            self.w.messages.ide(f"{exc}: program not executed")
+            return None
 
     def _arrays_fit(self, link, image, *, ask: bool) -> bool:
         """The controller keeps its DIM arrays for every program and a size never changes (CR 1042-1049), so a

@@ -171,6 +171,9 @@ class MainWindow(QMainWindow):
         text = resources_path("samples", name).read_text(encoding="utf-8")
         editor = self._add_editor(name, text, None)
         editor.setProperty("sample", name)
+        from motiontool.ui.io_panel import offer_test_settings
+
+        offer_test_settings(self, editor, name)  # a sample waiting for inputs says so and offers them
         return editor
 
     def editor_settings(self):

@@ -81,7 +81,7 @@ def build_menus(w) -> None:
             ("&Diagnostic Report...", None, lambda: cm.diagnostic_report(w)),
         ]),
         ("&Tools", [("&CAM-Editor", None, lambda: _cam_editor(w)), ("&Array Editor", None, lambda: _array_editor(w)),
-                    ("&Oscilloscope", None, lambda: _scope(w))]),
+                    ("&Oscilloscope", None, lambda: _scope(w)), ("&I/O Panel", None, lambda: _io_panel(w))]),
         ("&Settings", [
             ("&Editor...", None, lambda: _editor_settings(w)), ("&Compiler...", None, lambda: _compiler_settings(w)),
             ("Open last file", None, "open_last"),
@@ -208,6 +208,12 @@ def _scope(w) -> None:
     from motiontool.scope.ui import open_scope
 
     w._scopes = [s for s in getattr(w, "_scopes", []) if s.isVisible()] + [open_scope(w)]
+
+
+def _io_panel(w) -> None:
+    from motiontool.ui.io_panel import io_panel
+
+    io_panel(w)
 
 
 def _array_editor(w) -> None:
