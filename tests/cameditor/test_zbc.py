@@ -122,7 +122,7 @@ def test_missing_format_line():
 
 
 def test_newer_format_refused():
-    err = refuse(GOOD.replace("format 1\n", "format 3\n", 1))  # format 2 (motion laws) is read since C12
+    err = refuse(GOOD.replace("format 1\n", "format 4\n", 1))  # 2 (motion laws, C12) and 3 ([fc300], C19) are read
     assert err.line == 1 and "newer" in err.message
 
 

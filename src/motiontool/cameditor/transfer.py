@@ -10,13 +10,15 @@ from __future__ import annotations
 
 from motiontool.camcurve.layout import CurveArrayError, decode
 from motiontool.camcurve.model import CurveError
+from motiontool.cameditor import zbc_drive
 from motiontool.cameditor.zbc import ArrayEntry, ConfigError, ConfigFile, parameter_section
 from motiontool.comms.link import Link
 from motiontool.comms.protocol import LinkError
 from motiontool.paramdb import database
 
-#: The sets Restore from file offers as checkboxes (DG 2894-2900): parameter sections of the .zbc, and arrays.
-SETS = ("global", "axis", "user", "arrays")
+#: The sets Restore from file offers as checkboxes (DG 2894-2900): parameter sections of the .zbc, and arrays;
+#: "drive" is the FC 300's [fc300] section (decision C19).
+SETS = ("global", "axis", "user", "drive", "arrays")
 
 
 def download_config(link: Link, config: ConfigFile, sets: tuple[str, ...] = SETS) -> None:
@@ -31,6 +33,8 @@ def download_config(link: Link, config: ConfigFile, sets: tuple[str, ...] = SETS
             link.write_parameter(parameter.number, parameter.to_raw(value))
         except LinkError as exc:
             raise ConfigError(f"parameter {parameter.label}: the controller refused {value}: {exc}") from None
+    if "drive" in sets:
+        _download_drive(link, config.drive)
     if config.arrays and "arrays" in sets:
         try:
             link.call("restore_arrays", arrays=[{"name": a.name, "values": list(a.values)} for a in config.arrays])
@@ -45,6 +49,7 @@ def upload_config(link: Link) -> ConfigFile:
         if parameter.read_only:
             continue
         config.parameters[parameter.number] = parameter.from_raw(link.read_parameter(parameter.number))
+    config.drive = _upload_drive(link)
     for info in link.call("list_arrays"):
         values = link.read_array(info["index"])
         entry = ArrayEntry(info["name"], values)
@@ -57,3 +62,37 @@ def upload_config(link: Link) -> ConfigFile:
             config.curves.append(curve)
         config.arrays.append(entry)
     return config
+
+
+def _download_drive(link: Link, drive: dict[str, int]) -> None:
+    """The FC 300 settings.  A range may end at another parameter (4-13 from 4-11 up, docs/fc300.md), so a value
+    the drive refuses now is tried again after the others moved its bounds; what no order makes fit is refused."""
+    left = dict(drive)
+    while left:
+        refused: dict[str, LinkError] = {}
+        for label, value in left.items():
+            try:
+                link.write_parameter(label, value)
+            except LinkError as exc:
+                refused[label] = exc
+        if len(refused) == len(left):
+            label, exc = next(iter(refused.items()))
+            raise ConfigError(f"FC 300 parameter {label}: the controller refused {left[label]}: {exc}")
+        left = {label: left[label] for label in refused}
+
+
+def _upload_drive(link: Link) -> dict[str, int]:
+    """The FC 300 settings that differ from their defaults: the file says what was set (C19).  A link whose protocol
+    does not carry the drive's parameters (error 112 for the first: the FC protocol's parameter channel names only
+    the MCO 305's) gives none, as the file would from a drive at its defaults."""
+    drive: dict[str, int] = {}
+    for k, p in enumerate(zbc_drive.savable()):
+        try:
+            value = link.read_parameter(p.label)
+        except LinkError as exc:
+            if k == 0 and exc.number == 112:
+                return {}
+            raise
+        if value != p.default:
+            drive[p.label] = value
+    return drive

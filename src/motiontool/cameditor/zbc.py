@@ -25,10 +25,11 @@ from motiontool.camcurve.model import (
     FixPoint,
     StartStopPair,
 )
+from motiontool.cameditor import zbc_drive
 from motiontool.fileio import MiB, atomic_write_text, read_bytes
 from motiontool.paramdb import Parameter, ParameterError, database
 
-FORMAT_VERSION = 2  # 2: fix point types may be motion laws (LAW_TYPES); written only by files that use them
+FORMAT_VERSION = 3  # 2: motion laws (LAW_TYPES), 3: the [fc300] section; each written only by files that use it
 LAW_FORMAT = 2
 MAGIC = "# motiontool configuration file, format "
 EXTENSIONS = (".zbc", ".cnf")
@@ -92,6 +93,7 @@ class ConfigFile:
     parameters: dict[str, int | float] = field(default_factory=dict)
     arrays: list[ArrayEntry] = field(default_factory=list)
     curves: list[Curve] = field(default_factory=list)
+    drive: dict[str, int] = field(default_factory=dict)  # FC 300 settings by LCP number ("4-13"), zbc_drive
 
     def array(self, name: str) -> ArrayEntry | None:
         return next((a for a in self.arrays if a.name == name), None)
@@ -164,11 +166,17 @@ def config_text(config: ConfigFile) -> str:
     for param, value in sorted(params, key=lambda pv: pv[0].index):
         sections[parameter_section(param)].append(f"{param.label} = {_param_value(param, value)}")
     uses_laws = any(p.type in LAW_TYPES for c in config.curves for p in c.fix_points)
-    out = [f"{MAGIC}{LAW_FORMAT if uses_laws else 1}", "# see docs/formats/zbc.md", ""]
+    version = zbc_drive.DRIVE_FORMAT if config.drive else LAW_FORMAT if uses_laws else 1
+    out = [f"{MAGIC}{version}", "# see docs/formats/zbc.md", ""]
     for name in PARAMETER_SECTIONS:
         out.append(f"[{name}]")
         out.extend(sections[name])
         out.append("")
+    if config.drive:
+        try:
+            out.extend(zbc_drive.section_lines(config.drive))
+        except ValueError as exc:
+            raise ConfigError(str(exc)) from None
     for entry in config.arrays:
         out.append(f"[array {entry.name}]")
         out.append(f"size = {len(entry.values)}")
@@ -255,6 +263,7 @@ class _Reader:
         self.db = database()
         self.config = ConfigFile()
         self.param_lines: dict[str, int] = {}
+        self.drive_lines: dict[str, int] = {}
         self.arrays: list[_ArraySection] = []
         self.curves: list[_CurveSection] = []
         self.seen_sections: set[str] = set()
@@ -301,6 +310,8 @@ class _Reader:
             value = value[1:] if value.startswith(" ") else value
             if section in PARAMETER_SECTIONS:
                 self._parameter(section, key, value, number)
+            elif section == zbc_drive.SECTION:
+                zbc_drive.read_line(self.config.drive, key, value, number, self.drive_lines, self.error)
             elif isinstance(current, _ArraySection):
                 self._array_line(current, key, value, number)
             elif isinstance(current, _CurveSection):
@@ -325,9 +336,12 @@ class _Reader:
         self.version = int(version)
 
     def _open_section(self, inner: str, number: int) -> tuple[str, _ArraySection | _CurveSection | None]:
-        if inner in (*PARAMETER_SECTIONS, "end"):
+        if inner in (*PARAMETER_SECTIONS, zbc_drive.SECTION, "end"):
             if inner in self.seen_sections:
                 raise self.error(f"section [{inner}] appears twice", number)
+            if inner == zbc_drive.SECTION and self.version < zbc_drive.DRIVE_FORMAT:
+                raise self.error(f"section [{inner}] needs format {zbc_drive.DRIVE_FORMAT}, the file says format "
+                                 f"{self.version}", number)
             self.seen_sections.add(inner)
             return inner, None
         kind, sep, name = inner.partition(" ")
@@ -345,7 +359,8 @@ class _Reader:
             entry2 = _CurveSection(name, number)
             self.curves.append(entry2)
             return "curve", entry2
-        raise self.error(f"unknown section [{inner}] (global, axis, user, array NAME, curve NAME, end)", number)
+        raise self.error(f"unknown section [{inner}] (global, axis, user, fc300, array NAME, curve NAME, "
+                         "end)", number)
 
     def _parameter(self, section: str, key: str, value: str, number: int) -> None:
         m = _PARAM_KEY_RE.fullmatch(key)

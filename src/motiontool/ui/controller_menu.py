@@ -26,7 +26,7 @@ from motiontool.comms.protocol import LinkError
 from motiontool.ui.controllers import SIMULATED_IDS
 
 SET_LABELS = {"global": "Global parameters", "axis": "Axis parameters", "user": "User parameters",
-              "arrays": "Arrays"}
+              "drive": "FC 300 drive parameters", "arrays": "Arrays"}
 RESET_ENTRIES = (("Parameter", "parameters", "global and axis parameters go back to their defaults"),
                  ("Arrays", "arrays", "all arrays in the controller are deleted (like DELETE ARRAYS)"),
                  ("User Parameters", "user", "the user parameters 19-xx go back to their defaults"),
@@ -69,7 +69,8 @@ def _write_failed(w, title: str, path: Path, exc: OSError) -> None:
 
 
 def save_parameters(w, path: Path | None = None) -> bool:
-    """Parameters → Save to file (DG 2884-2892): global, axis and user parameters and all arrays → .zbc."""
+    """Parameters → Save to file (DG 2884-2892): global, axis and user parameters, the FC 300's changed
+    parameters (C19) and all arrays → .zbc."""
     link = _link(w)
     if link is None:
         return False
