@@ -255,3 +255,11 @@ def _pid_alive(pid: int) -> bool:
     except (PermissionError, OverflowError):
         return True
     return True
+
+
+def filter_extension(name_filter: str) -> str:
+    """The first extension of a file dialog's name filter, without the dot: "APOSS programs (*.m)" → "m",
+    "CSV (*.csv *.txt)" → "csv"; "" for "All files (*)". A save dialog adds it to a name typed without one, so
+    the file is not then hidden by File ▸ Open's filter (issue 23 item 9)."""
+    found = re.search(r"\*\.([A-Za-z0-9_]+)", name_filter)
+    return found.group(1) if found else ""

@@ -4,13 +4,13 @@ through the LinkBridge (a comms Link)."""
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 from PySide6.QtCore import QSettings, Qt, QTimer
 from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import (
     QDockWidget,
-    QFileDialog,
     QLabel,
     QListWidget,
     QListWidgetItem,
@@ -32,6 +32,7 @@ from motiontool.ui.recovery import Autosave, Recovery
 
 LIVE_CHECK_MS = 600   # live diagnostics after this pause in typing
 MAX_RECENT = 8
+PROGRAM_FILTER = "APOSS programs (*.m);;DPL programs (*.dpl)"
 
 
 class MainWindow(QMainWindow):
@@ -241,8 +242,9 @@ class MainWindow(QMainWindow):
             return False
         target = path or (Path(editor.property("path")) if editor.property("path") else None)
         if target is None:
-            chosen, _ = QFileDialog.getSaveFileName(self, "Save as", "program.m",
-                                                    "APOSS programs (*.m);;DPL programs (*.dpl)")
+            from motiontool.scope.ui.save_name import ask_save_name  # adds .m/.dpl to a bare name
+
+            chosen, _ = ask_save_name(self, "Save as", "program.m", PROGRAM_FILTER)
             if not chosen:
                 return False
             target = Path(chosen)
@@ -267,8 +269,9 @@ class MainWindow(QMainWindow):
         editor = self.current_editor()
         if editor is None:
             return False
-        chosen, _ = QFileDialog.getSaveFileName(self, "Save as", editor.property("path") or "program.m",
-                                                "APOSS programs (*.m);;DPL programs (*.dpl)")
+        from motiontool.scope.ui.save_name import ask_save_name  # adds .m/.dpl to a bare name
+
+        chosen, _ = ask_save_name(self, "Save as", editor.property("path") or "program.m", PROGRAM_FILTER)
         return bool(chosen) and self.save(editor=editor, path=Path(chosen))
 
     def close_tab(self, index: int) -> bool:
@@ -313,6 +316,10 @@ class MainWindow(QMainWindow):
             fill_recent_menu(self)
 
     def closeEvent(self, event) -> None:  # noqa: N802 - Qt override
+        scopes = sys.modules.get("motiontool.scope.ui")  # not loaded: no oscilloscope was opened
+        if scopes is not None and not scopes.close_scopes(self):  # an unsaved recording, and the user cancelled
+            event.ignore()
+            return
         while self.tabs.count():
             if not self.close_tab(0):
                 event.ignore()

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from PySide6.QtCore import QSettings, Qt
-from PySide6.QtWidgets import QToolButton
+from PySide6.QtWidgets import QMessageBox, QToolButton
 
 from motiontool.aposs.driver import compile_source
 from motiontool.comms.embedded import EmbeddedLink
@@ -17,6 +17,7 @@ from motiontool.scope.derived import DerivedSpec, compute
 from motiontool.scope.ui import ScopeWindow, open_scope, open_scope_file
 from motiontool.scope.ui.curve_list import ACTIVE, BA, GRID, LAST, MAX, STATUS, A
 from motiontool.scope.ui.dialogs import RecordingDialog
+from tests.modal import answering, button_reply
 from tests.scope.ui.mouse import drag, to_pixel
 
 POSA = "VEL 20\nACC 50\nDEC 50\nPOSA 100000\nDELAY 300\n"
@@ -252,7 +253,9 @@ def test_open_scope_from_the_main_window(qtbot, tmp_path):
         click(qtbot, scope, scope.start_action)
         qtbot.waitUntil(lambda: len(scope.scope.curves[0].buffer) > 20, timeout=5000)
         click(qtbot, scope, scope.stop_action)
-        scope.close()
+        with answering(qtbot, button_reply(QMessageBox.StandardButton.Discard)) as answers:
+            scope.close()  # an unsaved recording: the user is asked (issue 23 item 9)
+        assert answers.seen == ["QMessageBox 'Oscilloscope'"] and not scope.isVisible()
     finally:
         main.bridge.detach(close=False)
         main.controllers.close()

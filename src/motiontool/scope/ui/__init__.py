@@ -7,7 +7,7 @@ from PySide6.QtCore import Qt
 
 from motiontool.scope.ui.window import ScopeWindow, open_scope_file
 
-__all__ = ["ScopeWindow", "open_scope", "open_scope_file"]
+__all__ = ["ScopeWindow", "close_scopes", "open_scope", "open_scope_file"]
 
 
 def open_scope(main_window, variant: str = "free_run") -> ScopeWindow:
@@ -20,3 +20,9 @@ def open_scope(main_window, variant: str = "free_run") -> ScopeWindow:
     window.setWindowFlag(Qt.Window, True)  # a top-level window owned by the main window
     window.show()
     return window
+
+
+def close_scopes(main_window) -> bool:
+    """Close the main window's oscilloscopes before the IDE closes, each asking about an unsaved recording
+    (Save / Discard / Cancel, issue 23 item 9); False when the user cancelled."""
+    return all(window.close() for window in main_window.findChildren(ScopeWindow) if window.isVisible())

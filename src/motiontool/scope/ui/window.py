@@ -49,6 +49,7 @@ from motiontool.scope.ui.dialogs import AddCurveDialog, PropertiesDialog, Record
 from motiontool.scope.ui.fft import FftView
 from motiontool.scope.ui.list_menu import show_list_menu
 from motiontool.scope.ui.run_control import RunControl
+from motiontool.scope.ui.save_name import ask_save_name
 
 TITLES = {"free_run": "Free Run", "polling": "Free Run (polling)", "single_shot": "Single Shot",
           "testsetp": "TESTSETP", "tune": "Tune"}
@@ -81,6 +82,7 @@ class ScopeWindow(RunControl, QMainWindow):
         self.trigger = None          # (curve name, Trigger) for Free Run, or None
         self.trigger_single = True
         self._recording_status = None
+        self._saved_mark: tuple = ()  # the samples as last saved or loaded (unsaved_recording)
 
         self.chart = Chart(self.scope)
         self.list = CurveList(self.scope)
@@ -422,20 +424,47 @@ class ScopeWindow(RunControl, QMainWindow):
     def save_to(self, path: Path | str, *, with_data: bool = True) -> None:
         zbo.save(self.scope, path, with_data)
         self.path = Path(path)
+        if with_data:
+            self._saved_mark = self._data_mark()
         self._update_title()
 
-    def save_dialog(self, *, with_data: bool = True) -> None:
-        path, _ = QFileDialog.getSaveFileName(self, "Save oscilloscope", str(self.path or ""),
-                                              "Oscilloscope files (*.zbo)")
-        if path:
-            path = path if path.endswith(".zbo") else path + ".zbo"
-            try:
-                self.save_to(path, with_data=with_data)
-            except OSError as exc:  # the window and its curves stay as they are (decisions R7)
-                box = QMessageBox(QMessageBox.Icon.Critical, "Save", f"Cannot write {path}:\n{reason(exc)}.",
-                                  QMessageBox.StandardButton.Ok, self)
-                box.setInformativeText("The curves are still in this window: save them somewhere else.")
-                box.exec()
+    def save_dialog(self, *, with_data: bool = True) -> bool:
+        path, _ = ask_save_name(self, "Save oscilloscope", self.path or "", "Oscilloscope files (*.zbo)")
+        if not path:
+            return False
+        try:
+            self.save_to(path, with_data=with_data)
+        except OSError as exc:  # the window and its curves stay as they are (decisions R7)
+            box = QMessageBox(QMessageBox.Icon.Critical, "Save", f"Cannot write {path}:\n{reason(exc)}.",
+                              QMessageBox.StandardButton.Ok, self)
+            box.setInformativeText("The curves are still in this window: save them somewhere else.")
+            box.exec()
+            return False
+        return True
+
+    def _data_mark(self) -> tuple:
+        # every write bumps a buffer's version, so an equal mark means the same samples as when saved
+        return tuple((id(c.buffer), c.buffer.version) for c in self.scope.curves if len(c.buffer))
+
+    def unsaved_recording(self) -> bool:
+        """Samples recorded (or loaded and changed) since the last Save: closing would lose them."""
+        mark = self._data_mark()
+        return bool(mark) and mark != self._saved_mark
+
+    def confirm_unsaved(self) -> bool:
+        """Save / Discard / Cancel for an unsaved recording, as for an unsaved program (issue 23 item 9); True
+        when the window may close. No question in scripted use (ask=False, or a main window that asks nothing)."""
+        if not self.ask or not getattr(self.parent(), "ask_to_save", True) or not self.unsaved_recording():
+            return True
+        buttons = QMessageBox.StandardButton
+        answer = QMessageBox.question(self, "Oscilloscope", f"Save the recording of {self.windowTitle()}?",
+                                      buttons.Save | buttons.Discard | buttons.Cancel)
+        if answer == buttons.Save:
+            return self.save_dialog()  # cancelled or failed: the window stays, with its curves
+        if answer == buttons.Discard:
+            self._saved_mark = self._data_mark()
+            return True
+        return False
 
     def export_to(self, path: Path | str) -> None:
         """Export the curves: MDF4 for a .mf4 path (needs asammdf: Mdf4Unavailable without it), else CSV."""
@@ -445,12 +474,9 @@ class ScopeWindow(RunControl, QMainWindow):
             export_csv(self.scope, path)
 
     def export_dialog(self) -> None:
-        path, chosen = QFileDialog.getSaveFileName(self, "Export curves", "",
-                                                   "CSV (*.csv *.txt);;MDF4 via asammdf (*.mf4)")
+        path, _ = ask_save_name(self, "Export curves", "", "CSV (*.csv *.txt);;MDF4 via asammdf (*.mf4)")
         if not path:
             return
-        if chosen.startswith("MDF4") and not path.lower().endswith(".mf4"):
-            path += ".mf4"
         try:
             self.export_to(path)
         except OSError as exc:
@@ -471,6 +497,9 @@ class ScopeWindow(RunControl, QMainWindow):
             self._opened = window
 
     def closeEvent(self, event) -> None:  # noqa: N802 - Qt override
+        if not self.confirm_unsaved():
+            event.ignore()
+            return
         self._stop_acquisition()
         if self._link is not None:
             self._link.unsubscribe(self._relay.event.emit)
@@ -483,5 +512,6 @@ def open_scope_file(path: Path | str, parent=None) -> ScopeWindow:
     path = Path(path)
     scope = read_testrun(path) if path.suffix.lower() == ".txt" else zbo.load(path)
     window = ScopeWindow(None, scope.variant, scope=scope, parent=parent, ask=False, path=path)
+    window._saved_mark = window._data_mark()
     window.zoom_reset()
     return window
