@@ -1,6 +1,8 @@
 """Sources, integrators, turns bits, inversion, filter insertion, resets per reference, user units
 (seed 004 §4.3, §4.12, §5.2.2)."""
 
+import pytest
+
 from motiontool.apc import ApcDrive, SlotEncoder
 from motiontool.apc.units import rpm_to_speed
 
@@ -183,3 +185,31 @@ def test_source_speed_in_apc_units():
     d.APCSetRunMode(1)
     d.run_ms(5)
     assert abs(d.read(26) - rpm_to_speed(1000)) < 65536 // 4
+
+
+def test_encoder_lines_per_revolution_set_the_counter_steps():
+    """L463-467 "for 1024ppr encoder the counts per rev will be 4096. For one count the counter will go up in steps
+    of 16 (65536/4096)": with #3.34 = 1024 every feedback position [40] is a multiple of 16 and moves in steps of 16;
+    the default 16384 lines count in steps of 1 (L1004: 4096 ppr → 16384 counts → steps of 4)."""
+    def positions(lines):
+        d = enabled_drive()
+        if lines is not None:
+            d.params["3.34"] = lines
+        d.APCSetSpeedSetPoint(rpm_to_speed(7))
+        d.APCSelectReference(2)
+        seen = []
+        for _ in range(300):
+            d.tick()
+            seen.append(d.read(40))
+        return d, seen
+    d, seen = positions(1024)
+    assert d.params["3.34"] == 1024 and seen[-1] > 1000
+    assert {p % 16 for p in seen} == {0} and {(b - a) % 16 for a, b in zip(seen, seen[1:], strict=False)} == {0}
+    _, seen = positions(4096)
+    assert {p % 4 for p in seen} == {0} and any(p % 16 for p in seen)
+    d, seen = positions(None)
+    assert d.params["3.34"] == 16384 and any(p % 4 for p in seen)
+    _, seen = positions(1000)                      # 4000 counts: count c is at ⌊c·65536/4000⌋, a turn stays 65536
+    assert all(-(-p * 4000 // 65536) * 65536 // 4000 == p for p in seen) and len(set(seen)) > 20
+    with pytest.raises(ValueError, match="#3.34 = 0: drive encoder lines per revolution, 1 to 50000"):
+        d.params["3.34"] = 0

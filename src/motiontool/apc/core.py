@@ -165,6 +165,8 @@ class KernelCore:
         p.readers[(1, 11)] = lambda: self.reference_on
         p.writers[(1, 11)] = lambda v: setattr(self, "drive_enabled", bool(v))   # the run command (A45)
         p.readers[(3, 48)] = lambda: 1          # encoder initialised (L434-437): the simulated one is at once
+        p.readers[(3, 34)] = lambda: self.plant.encoder_cpr // 4   # drive encoder lines per revolution (A74)
+        p.writers[(3, 34)] = self._set_encoder_lines
         p.readers[(90, 1)] = lambda: self.fb.position
         p.readers[(90, 3)] = lambda: self.ref.position
         p.readers[(90, 18)] = lambda: self.fb.freeze_flag
@@ -181,6 +183,12 @@ class KernelCore:
                                   ((90, 47), self.ref, "freeze_enabled"), ((90, 48), self.fb, "freeze_enabled")):
             p.readers[key] = lambda s=source, a=attr: int(getattr(s, a))
             p.writers[key] = lambda v, s=source, a=attr: setattr(s, a, v if a == "selector" else bool(v))
+
+    def _set_encoder_lines(self, lines: int) -> None:
+        """#3.34: a quadrature encoder gives 4 counts per line (1024 ppr → 4096 counts, L463-469)."""
+        if not 1 <= lines <= 50000:
+            raise ValueError(f"#3.34 = {lines}: drive encoder lines per revolution, 1 to 50000")
+        self.plant.set_encoder_cpr(4 * lines)
 
     # --- events ------------------------------------------------------------------------------------------------
     def _emit(self, kind: str, **details) -> None:

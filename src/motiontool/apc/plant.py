@@ -34,8 +34,7 @@ class Plant:
         self.config = config or PlantConfig()
         self.position = self.config.start_revolutions * REV    # 48-bit word units, float
         self.speed = 0.0                                       # APC speed units
-        self._step = REV // max(1, min(self.config.encoder_cpr, 1 << 32))
-        self.word = self._quantised()                          # the drive encoder's word, kept with the position
+        self.set_encoder_cpr(self.config.encoder_cpr)          # the drive encoder's word, kept with the position
         angle = self.config.marker_angle
         self.marker_phase = None if angle is None else angle * REV
         self._mark_window = (-math.inf, math.inf)   # the marker positions around the motor (see passed_marker)
@@ -85,7 +84,10 @@ class Plant:
         self.position = pos
         self.speed = v
         step = self._step
-        self.word = (int(pos // step) * step) & WORD48
+        if step:
+            self.word = (int(pos // step) * step) & WORD48
+        else:
+            self.word = self._quantised()
         lo, hi = self._mark_window
         return pos < lo or pos >= hi
 
@@ -94,9 +96,16 @@ class Plant:
         position)."""
         return self.word
 
+    def set_encoder_cpr(self, cpr: int) -> None:
+        """The drive encoder's counts per revolution (4 × its lines, #3.34); the word is quantised anew. A count
+        that does not divide the turn is placed at the nearest word below count·2^32/cpr, so a turn stays 2^32."""
+        cpr = self.encoder_cpr = max(1, min(int(cpr), REV))
+        self._step = REV // cpr if REV % cpr == 0 else 0      # 0: the exact (slower) form in _quantised
+        self.word = self._quantised()
+
     def _quantised(self) -> int:
-        step = self._step
-        return (int(self.position // step) * step) & WORD48
+        cpr = self.encoder_cpr
+        return (math.floor(self.position * cpr / REV) * REV // cpr) & WORD48
 
     def marker_crossings(self, before: float, after: float) -> list[float]:
         """Fractions (0, 1] of the sample at which the marker angle was passed (linear in between)."""
