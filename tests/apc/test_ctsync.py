@@ -70,3 +70,35 @@ def test_only_the_master_broadcasts():
     assert d.CTSyncSetMasterReferences(1, 2, 3) == -2
     d.params["81.06"] = 25
     assert d.CTSyncSetMasterReferences(1, 2, 3) == 1
+
+
+def test_a_four_wire_line_takes_16_nodes():
+    """L2078 "8 nodes maximum for 2-wire and 16 nodes maximum for 4-wire before line repeaters are required"."""
+    line = CTSyncLine([ApcDrive() for _ in range(16)], four_wire=True)
+    line.run_ms(3)
+    assert line.samples == 3
+    with pytest.raises(ValueError, match="17 nodes: CTSync allows 16 on a 4-wire line without repeaters"):
+        CTSyncLine([ApcDrive() for _ in range(17)], four_wire=True)
+    with pytest.raises(ValueError, match=r"9 nodes: CTSync allows 8 on a 2-wire line without repeaters \(16 on a "
+                                         r"4-wire line\)"):
+        CTSyncLine([ApcDrive() for _ in range(9)])
+
+
+def test_a_slave_that_changes_its_pos_rate_is_an_error_naming_it():
+    """L2077 "All CTSync Master and Slave POS tasks must be set to the same update time (parameter #81.12)": a
+    slave's REINIT to 2 ms on a 1 ms line stops the line with words naming the slave and both rates."""
+    from motiontool.apc.ctsync import CTSyncRateError
+
+    slave, master = ApcDrive(), ApcDrive()
+    master.params["81.06"] = 25
+    line = CTSyncLine([slave, master])
+    line.run_ms(5)
+    slave.params["81.12"] = 4
+    slave.reinit()
+    with pytest.raises(CTSyncRateError) as caught:
+        line.run_ms(5)
+    assert str(caught.value) == ("CTSync: node 1 runs its POS task every 2 ms (#81.12 = 4), the line every 1 ms "
+                                 "(#81.12 = 3 on node 2, the master): all CTSync master and slave POS tasks must "
+                                 "be set to the same update time")
+    named = caught.value.describe([5, 8])                      # the command line's node ids
+    assert named.startswith("CTSync: node 5 runs its POS task every 2 ms") and "on node 8, the master" in named

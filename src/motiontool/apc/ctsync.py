@@ -17,6 +17,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 from motiontool.apc.drive import ApcDrive
+from motiontool.apc.units import pos_rate_code
 
 MAX_NODES_2WIRE, MAX_NODES_4WIRE = 8, 16     # L2072-2075
 FAULT_STATUS = {"short": 0, "long": -1, "checksum": -2}
@@ -32,7 +33,9 @@ class CTSyncLine:
         limit = MAX_NODES_4WIRE if four_wire else MAX_NODES_2WIRE
         if len(self.drives) > limit:
             raise ValueError(f"{len(self.drives)} nodes: CTSync allows {limit} on a "
-                             f"{'4' if four_wire else '2'}-wire line without repeaters")
+                             f"{'4' if four_wire else '2'}-wire line without repeaters"
+                             + ("" if four_wire else f" ({MAX_NODES_4WIRE} on a 4-wire line)"))
+        self.four_wire = four_wire
         periods = {d.period_us for d in self.drives}
         if len(periods) > 1:
             raise ValueError(f"every CTSync node must run the same POS rate (#81.12); found {sorted(periods)} µs")
@@ -68,7 +71,10 @@ class CTSyncLine:
                     d.ctsync_received = (*d.ctsync_received[:3], FAULT_STATUS[fault])
                     d.ctsync_counts[1] += 1
         sent = None
+        period = self.drives[0].period_ns
         for d in self.drives:
+            if d.period_ns != period:      # a REINIT in a node's program (L2077; checked here, sample by sample)
+                raise CTSyncRateError(self)
             d.ctsync_out = None
             d.tick()
             if d.ctsync_out is not None:
@@ -86,3 +92,27 @@ class CTSyncLine:
         end = first.time_ns + round(ms * 1_000_000)
         while first.time_ns + first.period_ns <= end:
             self.tick()
+
+
+class CTSyncRateError(ValueError):
+    """A node whose POS rate (#81.12, taken by REINIT) differs from the line's: the master's when there is one,
+    else the first node's (decision A73). `odd`: the 0-based positions of those nodes; `line_us`: the line's rate."""
+
+    def __init__(self, line: CTSyncLine):
+        masters = line.masters()
+        self.by_master = len(masters) == 1
+        ref = masters[0] if self.by_master else line.drives[0]
+        self.reference = line.drives.index(ref)
+        self.line_us = ref.period_us
+        self.odd = [i for i, d in enumerate(line.drives) if d.period_us != self.line_us]
+        self.periods = {i: line.drives[i].period_us for i in self.odd}
+        super().__init__(self.describe([i + 1 for i in range(len(line.drives))]))
+
+    def describe(self, names: list) -> str:
+        """The message with the nodes called `names[position]` (the command line's node ids)."""
+        which = "the master" if self.by_master else "the first node"
+        odd = ", ".join(f"node {names[i]} runs its POS task every {self.periods[i] / 1000:g} ms (#81.12 = "
+                        f"{pos_rate_code(self.periods[i])})" for i in self.odd)
+        return (f"CTSync: {odd}, the line every {self.line_us / 1000:g} ms (#81.12 = "
+                f"{pos_rate_code(self.line_us)} on node {names[self.reference]}, {which}): all CTSync master "
+                f"and slave POS tasks must be set to the same update time")
