@@ -60,7 +60,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
                          trace=args.trace, signals=[s for s in args.signals.split(",") if s.strip()],
                          trace_interval_ms=args.interval, record=args.record, realtime=args.realtime,
                          config=args.config, nodes=args.node, master_node=args.master_node, link=args.link,
-                         timeout=args.timeout)
+                         timeout=args.timeout, ctsync_wires=int(args.ctsync_wires))
     if args.master_node is not None and not args.node:
         print("motiontool run: --master-node needs --node (several controllers)", file=sys.stderr)
         return 1
@@ -142,7 +142,11 @@ def build_parser() -> argparse.ArgumentParser:
                    help="set a parameter before the start, e.g. KPROP=50 or 32-60=50; with ID: only on that node; "
                         "FILE.dpl: a drive parameter MM.PP=VALUE[@MS], at MS ms (1.11=0@2000 stops the drive)")
     p.add_argument("--input", action="append", default=[], metavar="[ID:]N=V@T",
-                   help="set digital input N to V at T ms (default 0); with ID: only on that node")
+                   help="set digital input N to V at T ms (default 0); with ID: only on that node; FILE.dpl: "
+                        "DIGIN0=V (the freeze input, also 0=V), REF_MARKER=1 or FB_MARKER=1 (a marker pulse)")
+    p.add_argument("--ctsync-wires", choices=("2", "4"), default="2", metavar="2|4",
+                   help="FILE.dpl with --node: the CTSync line's RS485 wiring, 2-wire (up to 8 nodes, the "
+                        "default) or 4-wire (up to 16)")
     p.add_argument("--include", "-I", action="append", type=Path, default=[], metavar="DIR")
     p.add_argument("--config", type=Path, metavar="CONF.zbc",
                    help="load parameters and arrays first (with --node: into every node)")

@@ -48,6 +48,7 @@ class RunOptions:
     master_node: int | None = None                          # whose PULSVEL is everyone's master (default lowest)
     link: str | None = None                                 # --link SPEC (comms/links.py); None = the simulator
     timeout: float = 30.0                                   # --timeout: how long a lost link may pause the run
+    ctsync_wires: int = 2                                   # .dpl with --node: a 2- or 4-wire CTSync line
 
 
 
@@ -103,7 +104,7 @@ def check_options(path: Path | None, options: RunOptions, err) -> bool:
     every output file can be written (a long run must not end in a traceback). False after printing why."""
     problems = []
     try:  # numbers inside compound options, before anything is compiled (cliargs: ASCII digits, bounded)
-        for value in options.inputs:
+        for value in [] if is_dpl_run(path, options) else options.inputs:  # a DPL run's: headless_dpl
             if not _NODE_PREFIX.match(value):
                 parse_input(value)
             elif options.nodes:  # without --node the prefix itself is the problem (below)
@@ -258,11 +259,16 @@ class TraceWriter:
         self.file.discard()
 
 
+def is_dpl_run(path: Path | None, options: RunOptions) -> bool:
+    """DPL programs on simulated APCs (headless_dpl): FILE.dpl or any --node ID:OTHER.dpl."""
+    return is_dpl(path) or any(is_dpl(spec.partition(":")[2].strip()) for spec in options.nodes)
+
+
 def run_program(path: Path | None, options: RunOptions, out: TextIO | None = None, err: TextIO | None = None) -> int:
     out, err = out or sys.stdout, err or sys.stderr  # looked up now: a caller may have redirected them
     if not check_options(path, options, err):
         return EXIT_REFUSED
-    if is_dpl(path) or any(is_dpl(spec.partition(":")[2].strip()) for spec in options.nodes):
+    if is_dpl_run(path, options):
         from motiontool.headless_dpl import run_dpl  # here: it uses this module's helpers
 
         return run_dpl(path, options, err)  # DPL programs run on the simulated APC (a CTSync line for several)

@@ -119,13 +119,19 @@ def test_program_host_slices_before_each_pos_sample_and_publishes():
 
 
 def test_the_freeze_input_over_the_link():
-    """L629-643 DIGIN0 (T10) is the SM-Applications freeze input: set_input 0 freezes now, schedule_input later."""
+    """L629-643 DIGIN0 (T10) is the SM-Applications freeze input: set_input 0 freezes now, schedule_input later;
+    L1076 "Parameter 81.42 … must be set to 1 to enable the freeze hardware" (default 0, L8212)."""
     drive = ApcDrive()
     drive.APCEnableReferenceFreeze()
     drive.APCEnableFeedbackFreeze()
     drive.APCSetRunMode(1)
     link = embedded_apc_link(drive)
     link.advance(5)
+    link.set_input(0, 1)
+    link.advance(1)
+    assert link.read_parameter("APC_RFSRC_FRZFLG") == 0 and link.read_parameter(42) == 0
+    link.set_input(0, 0)
+    link.write_parameter("81.42", 1)
     link.set_input(0, 1)
     link.advance(1)
     assert link.read_parameter("APC_RFSRC_FRZFLG") == 1 and link.read_parameter(42) == 1

@@ -2,6 +2,8 @@
 the MCO 305's ControllerService (docs/link-protocol.md), answered by an `ApcDrive` — or every drive of a CTSync
 line, one service per node — so the scope, the watch and the array editor work unchanged (docs/apc.md "Link").
 
+* Inputs (`set_input`, `schedule_input`): DIGIN0 (number 0, the freeze input; #81.42 passes it to the freeze
+  counters, #81.43 picks the edge) and the marker pulses "REF_MARKER", "FB_MARKER" (`apc_input`).
 * `identify` names the kind: ``{"product", "kind": "APC", "firmware", "protocol", "pos_period_us"}``.
 * `read_parameter` / signals: an APC read parameter by number (48), "[48]", "1048" (raw) or alias
   ("APC_FB_POS"), or a drive parameter written with a dot ("18.11", "#1.06"); `write_parameter` writes drive
@@ -43,6 +45,23 @@ def apc_reader(drive: ApcDrive, key) -> Callable[[], int]:
     return lambda: drive.read_parameter(number)[0]
 
 
+INPUT_NAMES = {"0": "DIGIN0", "DIGIN0": "DIGIN0", "REF_MARKER": "REF_MARKER", "FB_MARKER": "FB_MARKER"}
+
+
+def apc_input(number, value) -> str:
+    """The input `number` names (0 or "DIGIN0", "REF_MARKER", "FB_MARKER", any case), else ValueError saying which
+    the simulated drive has; a marker is a pulse, so its value must be 1."""
+    name = INPUT_NAMES.get(str(number).strip().upper())
+    if name is None:
+        raise ValueError(f"input {number}: the simulated SM-Applications takes DIGIN0 (0, the freeze input T10) and "
+                         "the encoders' marker pulses REF_MARKER and FB_MARKER")
+    if name != "DIGIN0" and int(value) != 1:
+        raise ValueError(f"{name}={value}: a marker is a pulse, give {name}=1")
+    if int(value) not in (0, 1):
+        raise ValueError(f"DIGIN0={value}: a digital input is 0 or 1")
+    return name
+
+
 class ApcService:
     """Executes link requests on one APC drive (module docstring)."""
 
@@ -66,6 +85,8 @@ class ApcService:
         self.stream_interval = 0
         self._stream_times: list[int] = []
         self._stream_buffer: list[list[int]] = []
+        self.digin0 = 0                               # DIGIN0's level (the freeze input)
+        self._inputs_due: list[tuple[int, int, str, int]] = []   # (time ms, order, input, value) of schedule_input
         self.drive.listeners.append(self._drive_event)
 
     @property
@@ -100,6 +121,9 @@ class ApcService:
         """One millisecond: as many POS samples as fall into it (four at 250 µs, one every 2nd ms at 2 ms), each
         after its time slice; the period is read before each sample (apc/clock.py)."""
         self.time_ms += 1
+        while self._inputs_due and self._inputs_due[0][0] <= self.time_ms:
+            at, _, name, value = self._inputs_due.pop(0)
+            self._apply_input(name, value, at * 1000)
         if self._runs_samples:
             self._clock.run_until(self.time_ms * 1_000_000, self.drive, self.slice, self._run_sample)
         if self.stream_signals and self.time_ms % self.stream_interval == 0:
@@ -182,19 +206,32 @@ class ApcService:
         return [apc_reader(self.drive, name)() for name in signals]
 
     def op_set_input(self, number, value) -> None:
-        """DIGIN0 (T10) is the freeze input of the SM-Applications (L629-643): a rising edge freezes the
-        reference and feedback counters now."""
-        if int(number) != 0:
-            raise ValueError(f"the simulated SM-Applications has the freeze input DIGIN0 only (got {number})")
-        if value:      # now: just after the last sample
-            for side in ("reference", "feedback"):
-                self.drive.schedule(side, "freeze", self.drive.time_ns / 1000 + 0.001)
+        """An input of the simulated drive now (`apc_input`): DIGIN0 (T10, the freeze input, L629-643) as a level,
+        or a marker pulse on the reference or feedback encoder."""
+        self._apply_input(apc_input(number, value), int(value), self.drive.time_ns / 1000)
 
     def op_schedule_input(self, number, value, time_ms) -> None:
-        if int(number) != 0 or not value:
-            raise ValueError("schedule DIGIN0 (the freeze input) rising: number 0, value 1")
-        for side in ("reference", "feedback"):      # service time and drive time run together
-            self.drive.schedule(side, "freeze", float(time_ms) * 1000)
+        """The same at `time_ms` of the service's clock (applied in the millisecond that ends there)."""
+        name = apc_input(number, value)
+        time_ms = int(time_ms)
+        if time_ms < 0:
+            raise ValueError(f"time {time_ms} ms is before the start")
+        self._inputs_due.append((time_ms, len(self._inputs_due), name, int(value)))
+        self._inputs_due.sort()
+
+    def _apply_input(self, name: str, value: int, time_us: float) -> None:
+        drive = self.drive
+        time_us = max(time_us, drive.time_ns / 1000 + 0.001)     # events come after the last sample
+        if name != "DIGIN0":
+            drive.schedule("reference" if name == "REF_MARKER" else "feedback", "marker", time_us)
+            return
+        level, self.digin0 = self.digin0, 1 if value else 0
+        edge = 1 if self.digin0 > level else -1 if self.digin0 < level else 0
+        falling = drive.params.values.get((81, 43), 0) == 1       # 0 rising, 1 falling edge (L1076)
+        # the freeze counters see DIGIN0 only with #81.42 = 1, "to enable the freeze hardware" (L1076, A72)
+        if drive.params.values.get((81, 42), 0) == 1 and edge == (-1 if falling else 1):
+            for side in ("reference", "feedback"):
+                drive.schedule(side, "freeze", time_us)
 
     def op_error_history(self) -> list[dict]:
         return [dict(e) for e in self.errors]

@@ -40,12 +40,13 @@ def dpl_link(*, realtime_factor: float | None = None, service: ApcService | None
     return EmbeddedLink(realtime_factor=realtime_factor, service=service)
 
 
-def dpl_line(node_count: int):
-    """A CTSync line of `node_count` simulated APCs running DPL programs, one Link per node (1..N), one clock."""
+def dpl_line(node_count: int, *, four_wire: bool = False):
+    """A CTSync line of `node_count` simulated APCs running DPL programs, one Link per node (1..N), one clock;
+    2-wire (8 nodes at most) unless `four_wire` (16, L2078)."""
     from motiontool.apc.drive import ApcDrive
     from motiontool.comms.apc_bus import ApcLineBus
 
-    bus = ApcLineBus([ApcDrive() for _ in range(node_count)])
+    bus = ApcLineBus([ApcDrive() for _ in range(node_count)], four_wire=four_wire)
     for link in bus.links.values():
         link.service.attach_program(DplProgram(link.service))
     return bus
