@@ -34,6 +34,31 @@ def _whole(value: float) -> float:
     return int(round(value)) if abs(value - round(value)) < 1e-9 else value
 
 
+def typed(operation):
+    """``operation`` on values the user typed (Fix Points cell, the Add dialogs): a fix point or start/stop point
+    the edit leaves off whole numbers is refused naming it, because the controller array stores longs and Save
+    would refuse it later (decision C20; a drag rounds, C17). Values that were already there are not judged."""
+    def run(curve: Curve, *args, **kwargs) -> Curve:
+        new = operation(curve, *args, **kwargs)
+        old = set(curve.fix_points)
+        for i, p in enumerate(new.fix_points):
+            if p not in old:
+                _refuse_fraction("fix_points", f"point {i + 1}", (("master", p.master), ("slave", p.slave)), i)
+        old_pairs = set(curve.start_stop_pairs)
+        for k, pair in enumerate(new.start_stop_pairs):
+            if pair not in old_pairs:
+                _refuse_fraction("start_stop_pairs", f"pair {k}", (("start", pair.start), ("stop", pair.stop)))
+        return new
+    return run
+
+
+def _refuse_fraction(field: str, where: str, values, point: int | None = None) -> None:
+    for what, value in values:
+        if value != math.floor(value):
+            raise CurveError(field, f"{where}: {what} {value} is not a whole number (the controller stores the "
+                                    f"curve as longs): type {math.floor(value)} or {math.ceil(value)}", point)
+
+
 def _blockers(curve: Curve) -> list[tuple[float, str]]:
     """Positions the last fix point must not precede [DG L3745-3752] (besides the previous fix point)."""
     found = []

@@ -250,7 +250,7 @@ class EditsMixin:
             return
         p = curve.fix_points[row]
         master, slave = (number, p.slave) if field == "master" else (p.master, number)
-        if not self.edit("Edit point", editing.move_point, row, master, slave,
+        if not self.edit("Edit point", editing.typed(editing.move_point), row, master, slave,
                          snap_on_grid=self.options["snap_on_grid"]):
             self.refresh()
 
@@ -264,7 +264,7 @@ class EditsMixin:
         from motiontool.cameditor.ui.dialogs import PairsDialog
 
         dialog = PairsDialog(self, "Add Fix points", "master", "slave")
-        dialog.accepted.connect(lambda: self.edit("Add points", editing.add_points, dialog.pairs,
+        dialog.accepted.connect(lambda: self.edit("Add points", editing.typed(editing.add_points), dialog.pairs,
                                                   snap_on_grid=self.options["snap_on_grid"]))
         self._open(dialog)
 
@@ -272,7 +272,7 @@ class EditsMixin:
         from motiontool.cameditor.ui.dialogs import PairsDialog
 
         dialog = PairsDialog(self, "Add Start Stop points", "start", "stop")
-        dialog.accepted.connect(lambda: self.edit("Add pairs", editing.add_pairs,
+        dialog.accepted.connect(lambda: self.edit("Add pairs", editing.typed(editing.add_pairs),
                                                   self._snapped_pairs(dialog.pairs)))
         self._open(dialog)
 
@@ -290,7 +290,7 @@ class EditsMixin:
             return
         pair = curve.start_stop_pairs[k]
         dialog = PairDialog(self, k, pair.start, pair.stop)
-        dialog.accepted.connect(lambda: self.edit("Edit pair", editing.set_pair, k,
+        dialog.accepted.connect(lambda: self.edit("Edit pair", editing.typed(editing.set_pair), k,
                                                   *self._snapped_pairs([(dialog.start.value(),
                                                                          dialog.stop.value())])[0]))
         self._open(dialog)
