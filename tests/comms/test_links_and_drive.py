@@ -322,3 +322,56 @@ def test_every_link_takes_requests_from_several_threads():
 def test_link_options_are_refused_out_of_their_range_before_the_port_opens(spec, message):
     with pytest.raises(LinkError, match=re.escape(message)):
         links.open_link(spec)
+
+
+@pytest.mark.parametrize("damaged", ["request", "answer"])
+def test_a_damaged_request_or_answer_is_asked_again_under_the_same_id_and_applied_once(damaged):
+    """Issue 24 item 9: a request or an answer damaged on the way failed the operation. It is sent again as the same
+    (session, id): the drive applies it once and answers the repeat from its cache."""
+    drive = VirtualDrive([1], clock="virtual")
+    node = drive.node(1)
+    spoiled = []
+
+    def spoil(message: bytes) -> bytes:
+        return message[:-1] + bytes([message[-1] ^ 0xFF])   # the last byte of the body: the CRC no longer fits
+
+    def exchange(message: bytes) -> bytes:
+        first = not spoiled
+        if first and damaged == "request":
+            spoiled.append(message)
+            message = spoil(message)
+        answer = node.handle_message(message)
+        if first and damaged == "answer":
+            spoiled.append(answer)
+            answer = spoil(answer)
+        return answer
+
+    handled = []
+    handle = node.handle
+    node.handle = lambda request: handled.append(request.op) or handle(request)
+    link = RemoteLink(exchange, "spoiling", poll_interval_s=60)
+    try:
+        link.call("events", now=True)    # the session's mark: the next request is the one that gets damaged
+        spoiled.clear()
+        link.write_parameter("KPROP", 45)
+        assert spoiled and link.read_parameter("KPROP") == 45
+        assert handled.count("write_parameter") == 1
+    finally:
+        link.close()
+
+
+def test_an_answer_damaged_every_time_fails_with_words():
+    drive = VirtualDrive([1], clock="virtual")
+    node = drive.node(1)
+
+    def exchange(message: bytes) -> bytes:
+        answer = node.handle_message(message)
+        return answer[:-1] + bytes([answer[-1] ^ 0xFF])
+
+    link = RemoteLink(exchange, "a bad line", poll_interval_s=60)
+    try:
+        with pytest.raises(LinkError, match=r"events: 4 tries on a bad line, the last gave a damaged answer \(bytes "
+                                             r"4-7: checksum mismatch"):
+            link.status()
+    finally:
+        link.close()

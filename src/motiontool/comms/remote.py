@@ -27,9 +27,10 @@ from typing import Any
 
 from motiontool.comms.link import Link
 from motiontool.comms.protocol import ConnectionLost, LinkError, LinkEvent, Request
-from motiontool.comms.wire import decode_response, encode_request
+from motiontool.comms.wire import DAMAGED_REQUEST, WireError, decode_response, encode_request
 
 POLL_INTERVAL_S = 0.05
+DAMAGED_REPEATS = 3      # a request whose request or answer arrived damaged is sent again this often
 LOST_RETRY_S = 0.25      # while the connection is lost, the poller tries again this often
 
 
@@ -70,10 +71,22 @@ class RemoteLink(Link):
         def exchange():
             with self._bus:
                 return self._exchange(message)
-        response = decode_response(self.patiently(exchange))
-        if response.id != request.id and response.ok:
-            raise LinkError(f"answer to request {response.id} where {request.id} was expected")
-        return response.result()
+        damage = ""
+        for _ in range(DAMAGED_REPEATS + 1):
+            # a damaged answer, or the controller's word that our request arrived damaged, is asked again under
+            # the same (session, id): the controller applies it once and answers a repeat from its cache
+            try:
+                response = decode_response(self.patiently(exchange))
+            except WireError as exc:
+                damage = f"a damaged answer ({exc})"
+                continue
+            if not response.ok and response.id == 0 and response.error.startswith(DAMAGED_REQUEST):
+                damage = response.error
+                continue
+            if response.id != request.id and response.ok:
+                raise LinkError(f"answer to request {response.id} where {request.id} was expected")
+            return response.result()
+        raise LinkError(f"{request.op}: {DAMAGED_REPEATS + 1} tries on {self.description}, the last gave {damage}")
 
     def patiently(self, action: Callable[[], Any]) -> Any:
         """Run `action` (one exchange with the controller); a lost connection marks the link lost and, with

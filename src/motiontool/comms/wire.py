@@ -35,6 +35,7 @@ COMPRESS_FROM = 96   # bodies shorter than this are sent as they are (zlib's hea
 # The largest request body (inflated): a full array memory (1 000 000 values, ~12 MiB of JSON) or a program
 # image fits; a few hundred bytes of zlib can no longer make the controller side allocate gigabytes.
 MAX_REQUEST_BYTES = 16 << 20
+DAMAGED_REQUEST = "damaged request"   # how a controller side begins its answer to a request it could not read
 MAX_ANSWER_BYTES = 256 << 20   # answers (scope recordings, uploads) are read by the master, which asked for them
 
 

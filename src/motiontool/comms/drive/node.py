@@ -22,7 +22,7 @@ from typing import Any
 
 from motiontool.comms.protocol import LinkEvent, Request, Response
 from motiontool.comms.service import ControllerService
-from motiontool.comms.wire import WireError, decode_request, encode_response
+from motiontool.comms.wire import DAMAGED_REQUEST, WireError, decode_request, encode_response
 
 EVENT_LIMIT = 4096       # events kept for a master that does not poll
 EVENTS_PER_ANSWER = 64   # at most this many in one `events` answer (the master asks again when `more`)
@@ -111,7 +111,7 @@ class DriveNode:
         try:
             request, session = decode_request(data)
         except WireError as exc:
-            return encode_response(Response(0, False, error=f"damaged request: {exc}"))
+            return encode_response(Response(0, False, error=f"{DAMAGED_REQUEST}: {exc}"))
         key = (session, request.id)
         with self._answers_lock:
             cached = self._answers.get(key)
