@@ -216,3 +216,28 @@ def test_a_slave_that_answers_busy_forever_fails_the_exchange():
     with pytest.raises(LinkError, match="has answered BUSY for 0.3 s"):
         master.exchange(b"request")
     assert time.monotonic() - started < 2.0
+
+
+@pytest.mark.wire
+def test_a_download_bigger_than_the_program_memory_is_refused_and_the_drive_stays_small():
+    """A 1.9 kB download made the drive hold a program of gigabytes: the image's body may inflate to a file's limit
+    (96 MiB); a controller's program memory is finite (DG 2639 "depending on available memory", DG 2669)."""
+    import base64
+
+    from motiontool.aposs.driver import compile_source
+    from motiontool.comms.service import PROGRAM_MEMORY_BYTES
+
+    img = compile_source('PRINT "x"\n').image.to_bytes()
+    raw = json.loads(zlib.decompress(img[6:]))
+    raw["code"] = "CODE"
+    code = "[" + "44,0," * (8 << 20) + "50,0]"               # 40 MiB of JSON, some 100 kB compressed
+    hostile = img[:6] + zlib.compress(json.dumps(raw).replace('"CODE"', code).encode())
+    with drive_process("--node", "1") as drive:
+        link = open_link(drive.url + "#1")
+        try:
+            with pytest.raises(LinkError, match=f"inflates to more than {PROGRAM_MEMORY_BYTES} bytes"):
+                link.call("download", image=base64.b64encode(hostile).decode("ascii"))
+            link.download(img)                                     # a real program still goes in
+            assert peak_rss_mb(drive.proc.pid) <= 150
+        finally:
+            link.close()

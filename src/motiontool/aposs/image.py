@@ -209,8 +209,9 @@ class ProgramImage:
         return MAGIC + bytes([FORMAT_VERSION]) + zlib.compress(payload, 9)
 
     @classmethod
-    def from_bytes(cls, data: bytes) -> ProgramImage:
-        """Read and completely validate an image (aposs/verify.py); ImageError names the byte offset."""
+    def from_bytes(cls, data: bytes, max_body: int = MAX_BODY_BYTES) -> ProgramImage:
+        """Read and completely validate an image (aposs/verify.py); ImageError names the byte offset. `max_body`:
+        the most its JSON may inflate to (a controller's program memory is smaller than a file's limit)."""
         if data[:5] != MAGIC:
             raise ImageError("not a motiontool program image: bytes 0-4 are not 'MTIMG'")
         if len(data) < 6:
@@ -222,9 +223,9 @@ class ProgramImage:
             raise ImageError(f"program image of {len(data)} bytes: more than {MAX_IMAGE_BYTES}")
         inflate = zlib.decompressobj()
         try:
-            body = inflate.decompress(data[6:], MAX_BODY_BYTES)
+            body = inflate.decompress(data[6:], max_body)
             if inflate.unconsumed_tail:
-                raise ImageError(f"the body after byte 6 inflates to more than {MAX_BODY_BYTES} bytes")
+                raise ImageError(f"the body after byte 6 inflates to more than {max_body} bytes")
             if not inflate.eof:
                 raise ImageError(f"truncated program image: the compressed body after byte 6 ends at byte {len(data)}")
             if inflate.unused_data:

@@ -37,6 +37,11 @@ def signal_reader(name: str) -> Callable[[Controller], float]:
     return lambda c: c.params.get(key)
 
 
+# A downloaded program's image, inflated: some 200 000 lines of APOSS (~70 bytes a line). A controller's program
+# memory is finite (DG 2639, 2669); a 2 kB download inflating to a file's limit made the drive hold 300 MB.
+PROGRAM_MEMORY_BYTES = 16 << 20
+
+
 class ControllerService:
     def __init__(self, controller: Controller | None = None):
         self.controller = controller or Controller()
@@ -161,7 +166,7 @@ class ControllerService:
             memory.dim(i, str(entry["name"]), [len(values)]).data[:] = values
 
     def op_download(self, image, number=None, name="", source=None, stack_size=None) -> None:
-        program = ProgramImage.from_bytes(base64.b64decode(image))
+        program = ProgramImage.from_bytes(base64.b64decode(image), max_body=PROGRAM_MEMORY_BYTES)
         if name:
             program.name = name
         if number is None:
