@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 import sys
 from pathlib import Path
@@ -77,6 +78,7 @@ def run_gui(open_file: Path | None = None, screenshot: Path | None = None) -> in
 
         offer_recovery(window)
     if screenshot is None:
+        _preload_curve_maths()
         code = app.exec()
         window.controllers.close()
         return code
@@ -96,3 +98,17 @@ def run_gui(open_file: Path | None = None, screenshot: Path | None = None) -> in
     app.exec()
     window.controllers.close()
     return result["code"]
+
+
+def _preload_curve_maths() -> None:
+    """Import the curve maths (scipy, ~1.3 s of the CAM-Editor's first opening, issue 23 item 10) on a worker
+    thread while the user looks at the window, so Tools ▸ CAM-Editor and a first SETCURVE do not wait for it.
+    Only Qt-free modules: nothing Qt is imported off the GUI thread. A failure here shows again, with its
+    message, where the module is really used."""
+    import threading
+
+    def work() -> None:
+        with contextlib.suppress(Exception):
+            import motiontool.camcurve.layout  # noqa: F401 - imported for its side effect: cached in sys.modules
+
+    threading.Thread(target=work, name="preload curve maths", daemon=True).start()

@@ -8,7 +8,7 @@ from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
 
-from PySide6.QtCore import Qt, QTimer
+from PySide6.QtCore import QEvent, Qt, QTimer
 from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import (
     QComboBox,
@@ -65,9 +65,11 @@ class Slot:
 
 
 class CamEditor(EditsMixin, QMainWindow):
-    def __init__(self, link_provider: Callable[[], Link | None] | None = None, parent=None) -> None:
+    def __init__(self, link_provider: Callable[[], Link | None] | None = None, parent=None,
+                 controller: Callable[[], int | None] | None = None) -> None:
         super().__init__(parent)
         self.link_provider = link_provider or (lambda: None)
+        self.controller = controller or (lambda: None)  # the number of the controller Read/Write talk to
         self.confirm = True  # ask before discarding changes / overwriting a controller (tests switch it off)
         self.parameters: dict[str, int | float] = {}
         self.slots: list[Slot] = []
@@ -162,9 +164,10 @@ class CamEditor(EditsMixin, QMainWindow):
             "redo": self._action("Redo", self.redo, icon=sp.SP_ArrowForward, shortcut="Ctrl+Y"),
             "snap_all": self._action("Snap all", self.snap_all, tip="Snap all Fix points and Start Stop points on "
                                                                     "the interpolation grid"),
-            "read": self._action("Read", self.read_from_controller, icon=sp.SP_ArrowDown,
+            # arrows as the IDE's download: down to the controller (Write), up from it (Read)
+            "read": self._action("Read from controller", self.read_from_controller, icon=sp.SP_ArrowUp,
                                  tip="Read from controller: replaces all parameters and arrays"),
-            "write": self._action("Write", self.write_to_controller, icon=sp.SP_ArrowUp,
+            "write": self._action("Write to controller", self.write_to_controller, icon=sp.SP_ArrowDown,
                                   tip="Write to controller: parameters and arrays"),
             "import": self._action("Import", self.import_dialog, tip="Import a .dat curve (replaces the selected "
                                                                      "curve)"),
@@ -176,29 +179,49 @@ class CamEditor(EditsMixin, QMainWindow):
             "add": self._action("Add CAM array", self.add_array_dialog),
             "delete": self._action("Delete array", self.delete_array, icon=sp.SP_TrashIcon),
         }
-        bar = self.addToolBar("CAM-Editor")
-        bar.setObjectName("cam_toolbar")
-        self.kinds.currentChanged.connect(lambda index: bar.setVisible(index == 0))  # the MCO curves' toolbar
-        bar.setToolButtonStyle(Qt.ToolButtonStyle.ToolButtonIconOnly)  # text where there is no icon
         self.array_combo = QComboBox()
         self.array_combo.setMinimumContentsLength(18)
         self.length_field = QLineEdit()
         self.length_field.setReadOnly(True)
         self.length_field.setMaximumWidth(60)
         self.length_field.setToolTip("Minimum array length: the DIM size the program needs")
-        groups = (("new", "open", "save", "save_as"), None, ("zoom_reset", "zoom_in", "zoom_out", "reset_splitters"),
-                  ("undo", "redo", "snap_all"), ("read", "write", "import", "export"), ("trace", "clear_trace"),
-                  ("add", "delete"))
-        for group in groups:
-            if group is None:
-                bar.addWidget(QLabel(" Array: "))
-                bar.addWidget(self.array_combo)
-                bar.addWidget(QLabel(" Length: "))
-                bar.addWidget(self.length_field)
-            else:
-                for name in group:
-                    bar.addAction(self.actions_by_name[name])
-            bar.addSeparator()
+        # two rows: with Read/Write named, one row no longer fits 1400 px and hid Add/Delete array behind »
+        rows = ((("new", "open", "save", "save_as"), None, ("zoom_reset", "zoom_in", "zoom_out", "reset_splitters"),
+                 ("undo", "redo", "snap_all")),
+                (("read", "write", "import", "export"), ("trace", "clear_trace"), ("add", "delete")))
+        for number, groups in enumerate(rows):
+            if number:
+                self.addToolBarBreak()
+            bar = self.addToolBar("CAM-Editor" if not number else "CAM-Editor transfer")
+            bar.setObjectName("cam_toolbar" if not number else "cam_toolbar_2")
+            self.kinds.currentChanged.connect(lambda index, b=bar: b.setVisible(index == 0))  # MCO curves' toolbar
+            bar.setToolButtonStyle(Qt.ToolButtonStyle.ToolButtonIconOnly)  # text where there is no icon
+            for group in groups:
+                if group is None:
+                    bar.addWidget(QLabel(" Array: "))
+                    bar.addWidget(self.array_combo)
+                    bar.addWidget(QLabel(" Length: "))
+                    bar.addWidget(self.length_field)
+                else:
+                    for name in group:
+                        bar.addAction(self.actions_by_name[name])
+                bar.addSeparator()
+        for name in ("read", "write"):  # icon-only they were taken for each other (issue 23 item 10)
+            bar.widgetForAction(self.actions_by_name[name]).setToolButtonStyle(
+                Qt.ToolButtonStyle.ToolButtonTextBesideIcon)
+        self.name_controller()
+
+    def name_controller(self) -> None:
+        """"Read from controller N" / "Write to controller N": the controller the buttons talk to, as now."""
+        number = self.controller() if self.link_provider() is not None else None
+        suffix = f" {number}" if number is not None else ""
+        self.actions_by_name["read"].setText(f"Read from controller{suffix}")
+        self.actions_by_name["write"].setText(f"Write to controller{suffix}")
+
+    def changeEvent(self, event) -> None:  # noqa: N802 - Qt override
+        super().changeEvent(event)
+        if event.type() == QEvent.Type.ActivationChange and self.isActiveWindow():
+            self.name_controller()  # Select Controller may have chosen another one meanwhile
 
     def _connect(self) -> None:
         self.array_combo.activated.connect(self.select_array)
