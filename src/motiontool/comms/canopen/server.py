@@ -22,7 +22,7 @@ import canopen
 from motiontool.comms.canopen import eds
 from motiontool.comms.canopen.node import ControllerNode
 from motiontool.comms.canopen.slcan import SlcanServer, open_local_bus
-from motiontool.comms.drive.listeners import listen_port
+from motiontool.comms.drive.listeners import exposed, listen_port, warn_exposed
 from motiontool.comms.protocol import LinkError
 from motiontool.kernel.canbus import CanFrame
 
@@ -101,9 +101,9 @@ class SlcanListener:
         if interface != "slcan" or not channel.startswith("socket://"):
             raise LinkError(f"--listen '{spec.text}': the CANopen drive listens as canopen:slcan:socket://HOST:PORT")
         host, _, port = channel.removeprefix("socket://").rpartition(":")
-        if host not in ("127.0.0.1", "localhost") and not spec.option("any_host", False, lambda v: v == "1"):
-            raise LinkError(f"--listen '{spec.text}': listen on 127.0.0.1 (add ,any_host=1 to listen on {host})")
+        host = host.strip("[]")
         number = listen_port(spec, port or "0")  # before the hub bus exists: a refusal leaves nothing open
+        public = exposed(spec, host)
         name = f"motiontool-drive-{next(_channels)}"
         try:
             self.server = SlcanServer(name, host, number, interface="hub")
@@ -112,6 +112,8 @@ class SlcanListener:
         self.canopen = CanopenDrive(drive, name, interface="hub")
         self.server.on_disconnect.append(self.canopen.forget_transfers)
         self.url = f"canopen:slcan:{self.server.url}"
+        if public:
+            warn_exposed(self.url)
 
     def close(self) -> None:
         self.canopen.close()

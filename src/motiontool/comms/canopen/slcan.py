@@ -191,7 +191,7 @@ class SlcanServer:
         self.refused = 0
         self.on_disconnect: list = []          # called with the node ids whose SDO client went away
         self._sdo_clients: dict[int, _Client] = {}   # node id → the client that sent its last SDO request
-        self._listener = socket.create_server((host, port))
+        self._listener = socket.create_server((host, port), family=socket.AF_INET6 if ":" in host else socket.AF_INET)
         self.host, self.port = self._listener.getsockname()[:2]
         self._threads = [threading.Thread(target=self._accept, name="slcan-accept", daemon=True),
                          threading.Thread(target=self._pump, name="slcan-pump", daemon=True)]
@@ -200,7 +200,7 @@ class SlcanServer:
 
     @property
     def url(self) -> str:
-        return f"socket://{self.host}:{self.port}"
+        return f"socket://[{self.host}]:{self.port}" if ":" in self.host else f"socket://{self.host}:{self.port}"
 
     def _accept(self) -> None:
         while not self.closed:

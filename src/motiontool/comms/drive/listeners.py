@@ -9,6 +9,7 @@ in its own threads, `url` is the link spec a master passes to `--link` (printed 
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Protocol
@@ -68,3 +69,26 @@ def open_listener(text: str, drive) -> Listener:
         known = ", ".join(s.syntax for s in listener_schemes()) or "none"
         raise LinkError(f"--listen '{text}': unknown scheme '{spec.scheme}' (known: {known})")
     return scheme.factory(spec, drive)
+
+
+LOOPBACK = ("127.0.0.1", "localhost", "::1")
+
+
+def url_host(host: str) -> str:
+    return f"[{host}]" if ":" in host else host
+
+
+def exposed(spec: LinkSpec, host: str) -> bool:
+    """True when a listener on `host` serves beyond this machine; that needs the opt-in `,any_host=1` (LinkError
+    without it): the virtual drive has no authentication (issue 24 item 7). Say it with `warn_exposed`."""
+    if host in LOOPBACK:
+        return False
+    if not spec.option("any_host", False, lambda v: v == "1"):
+        raise LinkError(f"--listen '{shown(spec.text)}': listen on 127.0.0.1 (add ,any_host=1 to listen on {host}: "
+                        "anyone who reaches it can control the drive)")
+    return True
+
+
+def warn_exposed(url: str) -> None:
+    print(f"motiontool drive: WARNING: {url} serves the network without authentication: anyone who reaches it "
+          "can download and start programs, write parameters and reset the controller", file=sys.stderr, flush=True)

@@ -24,7 +24,7 @@ from collections.abc import Callable
 
 from motiontool.cliargs import shown
 from motiontool.comms.chunks import SlaveChannel
-from motiontool.comms.drive.listeners import listen_port
+from motiontool.comms.drive.listeners import exposed, listen_port, url_host, warn_exposed
 from motiontool.comms.fc.extension import MAX_CHUNK, frame_telegram, is_frame, telegram_frame
 from motiontool.comms.fc.telegram import (
     AK_NONE,
@@ -169,10 +169,11 @@ class FcSocketListener(_Serving):
         super().__init__()
         self.drive, self.baud = drive, baud
         self.refused = 0
-        self.server = socket.create_server((host, port))
+        family = socket.AF_INET6 if ":" in host else socket.AF_INET
+        self.server = socket.create_server((host, port), family=family)
         self.server.settimeout(0.1)
         host, port = self.server.getsockname()[:2]
-        self.url = f"fc:socket://{host}:{port}"
+        self.url = f"fc:socket://{url_host(host)}:{port}"
         self._spawn(self._accept)
 
     def _accept(self) -> None:
@@ -252,7 +253,7 @@ class FcPtyListener(_Serving):
 
 
 def open_fc_listener(spec: LinkSpec, drive):
-    spec.check_options({"baud"})
+    spec.check_options({"baud", "any_host"})
     baud = spec.option("baud", None, int)
     if spec.node is not None:
         raise LinkError(f"--listen '{spec.text}': a listener serves every node; give the nodes with --node")
@@ -262,10 +263,16 @@ def open_fc_listener(spec: LinkSpec, drive):
         host, _, port = spec.target[len("socket://"):].rpartition(":")
         if not host or not port:
             raise LinkError(f"--listen '{shown(spec.text)}': give socket://HOST:PORT (PORT 0 picks a free port)")
+        host = host.strip("[]")
+        number = listen_port(spec, port)
+        public = exposed(spec, host)
         try:
-            return FcSocketListener(drive, host.strip("[]"), listen_port(spec, port), baud)
+            listener = FcSocketListener(drive, host, number, baud)
         except OSError as exc:
             raise LinkError(f"--listen '{spec.text}': {exc}") from None
+        if public:
+            warn_exposed(listener.url)
+        return listener
     raise LinkError(f"--listen '{spec.text}': fc listens on socket://HOST:PORT or on pty")
 
 
