@@ -6,15 +6,22 @@ exactly into the other, so both directions report the largest position error the
 
 * APC → MCO: every segment is sampled into fix points (its ends and `points_per_segment` - 1 points inside); the
   editor's spline through them follows the laws closely, and the error is measured densely.
-* MCO → APC: from each fix point the longest run of fix-point segments that one law follows within the tolerance
-  becomes one APC segment (the law that fits best; same ends, so the positions are exact at those fix points);
-  where not even a single fix-point segment fits, it is split in half, down to `min_master` counts (spec §7.2:
-  "several short linear segments, error bounded").
+* MCO → APC with continuous speed (`curve_to_smooth_table`, the editor's "From MCO curve"): the six laws alone
+  change speed only from or to rest, so a chain of them steps its speed at every join (81 Linear segments for a
+  plain curve, issue 23). A Square1 segment with a linear second slave travel (OutArray2%) ramps the speed
+  linearly from Y2/X to (2·Y1 + Y2)/X (L1440; OutArray2 L1337, L3446): pairs of such segments, the first starting at the
+  speed the last one ended with, reach the curve's position and speed at the end of each pair. Equal segment
+  lengths make every join exact in whole counts (decision C21).
+* MCO → APC (`curve_to_table`): from each fix point the longest run of fix-point segments that one law follows
+  within the tolerance becomes one APC segment (the law that fits best; same ends, so the positions are exact
+  at those fix points); where not even a single fix-point segment fits, it is split in half, down to
+  `min_master` counts (spec §7.2: "several short linear segments, error bounded").
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from fractions import Fraction
 
 import numpy as np
 
@@ -77,6 +84,103 @@ def curve_to_table(curve: Curve, *, name: str | None = None, counts_per_mu: floa
     drawn = np.array([table.slave_at(int(m) - masters[0]) for m in np.round(probe)]) + start
     worst = max(worst, float(np.max(np.abs(drawn - slave_counts(np.round(probe))))))
     return Conversion(table, None, worst)
+
+
+SQUARE1 = 2          # the law whose speed ramps linearly from the start speed (0 plus the OutArray2 part)
+_SMOOTH_PROBES = 8   # points per segment at which the smooth table is compared with the curve
+
+
+def curve_to_smooth_table(curve: Curve, *, name: str | None = None, counts_per_mu: float = 1.0,
+                          counts_per_uu: float = 1.0, tolerance: float = 2.0,
+                          max_segments: int = 8192) -> Conversion:
+    """The APC table of Square1 segments with a linear OutArray2 part whose slave speed is continuous at every
+    join (also from the last segment to the first when the curve ends at its start speed and travel parity
+    allows, see `_smooth_segments`), with the fewest pairs of equal segments that follow `curve` within
+    `tolerance` slave counts (or `max_segments`, then the error says how close it came)."""
+    start_master = round(curve.fix_points[0].master * counts_per_mu)
+    total = round(curve.fix_points[-1].master * counts_per_mu) - start_master
+    if total < 2:
+        raise ValueError("the curve is shorter than two master counts: use more counts per MU")
+
+    def slave_counts(master_counts):
+        return np.asarray(spline.slave(curve, (np.asarray(master_counts, dtype=float) + start_master)
+                                       / counts_per_mu)) * counts_per_uu
+
+    def speed(master_counts):
+        return np.asarray(spline.velocity(curve, (np.asarray(master_counts, dtype=float) + start_master)
+                                          / counts_per_mu)) * counts_per_uu / counts_per_mu
+
+    origin = float(slave_counts([0])[0])
+
+    def build(pairs: int) -> tuple[list[ApcSegment], float]:
+        bounds = [round(k * total / (2 * pairs)) for k in range(2 * pairs + 1)]
+        at_pairs = bounds[::2]
+        positions = np.round(slave_counts(at_pairs) - origin).astype(int)
+        speeds = speed(at_pairs)
+        speeds[-1] = speeds[0] if abs(speeds[-1] - speeds[0]) < 1e-9 * max(1.0, abs(speeds[0])) else speeds[-1]
+        segments = _smooth_segments(bounds, [int(p) for p in positions], [float(v) for v in speeds])
+        return segments, _smooth_error(segments, bounds, slave_counts, origin)
+
+    tolerance_before_rounding = max(tolerance - 0.5, tolerance / 2)  # the kernel rounds each value to a count
+    pairs = max(1, len(curve.fix_points) - 1)
+    best = build(pairs)
+    while best[1] > tolerance_before_rounding and 4 * pairs <= min(max_segments, total):
+        finer = build(2 * pairs)
+        if finer[1] > 0.75 * best[1]:  # whole counts, not the segment length, limit the error now
+            break
+        pairs, best = 2 * pairs, finer
+    enough = max(tolerance_before_rounding, best[1])
+    low, high = pairs // 2, pairs  # the fewest pairs that follow the curve as closely
+    while high - low > 1:
+        middle = (low + high) // 2
+        candidate = build(middle)
+        if candidate[1] <= enough:
+            high, best = middle, candidate
+        else:
+            low = middle
+    for more in range(high, min(2 * high, total // 2) + 1):  # equal lengths: every join exact in whole counts
+        if total % (2 * more) == 0:
+            candidate = build(more)
+            if candidate[1] <= enough:
+                best = candidate
+                break
+    table = ApcCamTable(name or _identifier(curve.name), tuple(best[0]))
+    probe = np.unique(np.linspace(0, total, max(2000, 8 * len(best[0]))).round().astype(int))
+    drawn = np.array([table.slave_at(int(m)) for m in probe]) + round(origin)
+    return Conversion(table, None, float(np.max(np.abs(drawn - slave_counts(probe)))))
+
+
+def _smooth_segments(bounds: list[int], positions: list[int], speeds: list[float]) -> list[ApcSegment]:
+    """Pairs of Square1 + OutArray2 segments over `bounds` (2 per pair): each pair starts at the speed the one
+    before ended with (OutArray2 = that speed × X, rounded), ends exactly on `positions`, and chooses how its
+    travel splits between its halves so that its end speed is nearest `speeds` (counts per master count)."""
+    segments: list[ApcSegment] = []
+    speed_in = Fraction(round(speeds[0] * (bounds[1] - bounds[0])), bounds[1] - bounds[0])
+    for j in range(len(positions) - 1):
+        a, m, b = bounds[2 * j], bounds[2 * j + 1], bounds[2 * j + 2]
+        x1, x2 = m - a, b - m
+        travel = positions[j + 1] - positions[j]
+        y2a = round(speed_in * x1)
+        # end speed = 2(D - D1)/X2 - (2 D1 - Y2a)/X1 (the Square1 ramps), solved for D1 and rounded to a count
+        d1 = round((2 * travel / x2 + y2a / x1 - speeds[j + 1]) / (2 / x2 + 2 / x1))
+        middle = Fraction(2 * d1 - y2a, x1)
+        y2b = round(middle * x2)
+        d2 = travel - d1
+        segments += [ApcSegment(x1, d1 - y2a, SQUARE1, y2a), ApcSegment(x2, d2 - y2b, SQUARE1, y2b)]
+        speed_in = Fraction(2 * d2 - y2b, x2)
+    return segments
+
+
+def _smooth_error(segments: list[ApcSegment], bounds: list[int], slave_counts, origin: float) -> float:
+    """Largest |table − curve| at `_SMOOTH_PROBES` points inside each segment and at its ends (vectorised; the
+    kernel's rounding adds at most half a count)."""
+    u = np.linspace(0.0, 1.0, _SMOOTH_PROBES + 1)
+    starts = np.cumsum([0] + [s.slave + s.slave2 for s in segments[:-1]])
+    y1 = np.array([s.slave for s in segments], dtype=float)[:, None]
+    y2 = np.array([s.slave2 for s in segments], dtype=float)[:, None]
+    table = starts[:, None] + y1 * u ** 2 + y2 * u
+    masters = np.asarray(bounds[:-1], dtype=float)[:, None] + np.diff(bounds)[:, None] * u
+    return float(np.max(np.abs(table - (slave_counts(masters.ravel()).reshape(masters.shape) - origin))))
 
 
 def _longest_run(masters: list[int], i: int, slave_counts, tolerance: float) -> int:

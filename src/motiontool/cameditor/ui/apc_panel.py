@@ -40,7 +40,7 @@ from PySide6.QtWidgets import (
 from motiontool.apc.calculators import trapezoid_from_slave, trapezoid_from_times
 from motiontool.apc.camlaws import LAW_NAMES
 from motiontool.camcurve.model import Curve
-from motiontool.cameditor.apcconvert import curve_to_table, table_to_curve
+from motiontool.cameditor.apcconvert import curve_to_smooth_table, table_to_curve
 from motiontool.cameditor.apcdpl import DplImportError, import_dpl, table_program, table_to_dpl
 from motiontool.cameditor.apctable import ApcCamTable, ApcSegment, ApcTableError
 from motiontool.fileio import atomic_write_text
@@ -342,12 +342,14 @@ class ApcPanel(QWidget):
             self.show_message("no MCO curve is selected in the Fix-point curves tab")
             return False
         try:
-            result = curve_to_table(curve, name=None, tolerance=1.0)
+            # speed continuous at every join; the laws alone stepped it at each of 81 Linear joins (decision C21)
+            result = curve_to_smooth_table(curve, name=None, tolerance=2.0)
         except ValueError as exc:
             self.show_message(f"From MCO curve: {exc}")
             return False
         self.replace_table(result.table)
-        self.show_message(f"from '{curve.name}': {len(result.table.segments)} segments, largest position error "
+        self.show_message(f"from '{curve.name}': {len(result.table.segments)} Square1 segments with a linear "
+                          f"OutArray2 part, speed continuous at every join; largest position error "
                           f"{result.max_error:.2f} counts", error=False)
         return True
 
