@@ -320,6 +320,11 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
     def language(self) -> str:
         return "dpl" if self.lang is dpl_lang else "aposs"
 
+    def print_(self, printer) -> None:
+        from motiontool.ui.editor.printing import print_editor
+
+        print_editor(self, printer)  # wrapped lines, a header on each page
+
     def set_language(self, language: str) -> None:
         """"dpl" for the APC's DPL (.dpl files), "aposs" otherwise: colours, hover help and completion follow."""
         if language == self.language:
