@@ -56,3 +56,21 @@ def test_the_cam_editor_opens_with_a_busy_cursor_and_named_read_write_buttons(wi
     assert "failed" not in editor.message_line.text()
     editor.modified = False
     editor.close()
+
+
+def test_the_ide_imports_the_curve_maths_off_the_gui_thread_and_nothing_qt():
+    """The first opening waited 1.9-2.3 s, most of it importing scipy; the IDE now imports the curve maths on a
+    worker thread after it starts (ui/app.py), and only Qt-free modules there."""
+    import subprocess
+    import sys
+
+    script = ("import sys, threading\n"
+              "from motiontool.ui.app import _preload_curve_maths\n"
+              "before = set(sys.modules)\n"
+              "_preload_curve_maths()\n"
+              "[t.join() for t in threading.enumerate() if t.name == 'preload curve maths']\n"
+              "new = set(sys.modules) - before\n"
+              "print('motiontool.camcurve.layout' in new, 'motiontool.cameditor.apcconvert' in new,"
+              " sorted(m for m in new if m.startswith(('PySide6', 'shiboken6', 'pyqtgraph'))))\n")
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    assert done.stdout.split("\n")[0] == "True True []", done.stdout + done.stderr

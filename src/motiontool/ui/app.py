@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import contextlib
+import importlib
 import os
 import sys
 from pathlib import Path
@@ -108,7 +109,9 @@ def _preload_curve_maths() -> None:
     import threading
 
     def work() -> None:
-        with contextlib.suppress(Exception):
-            import motiontool.camcurve.layout  # noqa: F401 - imported for its side effect: cached in sys.modules
+        for module in ("motiontool.camcurve.layout", "motiontool.cameditor.transfer", "motiontool.cameditor.zbc",
+                       "motiontool.cameditor.dat", "motiontool.cameditor.apcconvert", "motiontool.cameditor.apcdpl"):
+            with contextlib.suppress(Exception):
+                importlib.import_module(module)  # cached in sys.modules for the editor's own import
 
     threading.Thread(target=work, name="preload curve maths", daemon=True).start()
