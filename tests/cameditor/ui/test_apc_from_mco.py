@@ -5,6 +5,7 @@ clicks on the tab and the buttons."""
 from __future__ import annotations
 
 from PySide6.QtCore import Qt
+from PySide6.QtWidgets import QToolBar
 
 from motiontool.cameditor.zbc import ConfigFile
 from tests.camcurve.conftest import stamping_curve
@@ -18,6 +19,7 @@ def test_from_mco_curve_gives_a_table_without_speed_steps_that_runs_as_drawn(qtb
     qtbot.mouseClick(bar, Qt.MouseButton.LeftButton, pos=bar.tabRect(1).center())
     panel = editor.apc_panel
     assert editor.kinds.currentWidget() is panel
+    assert not [bar for bar in editor.findChildren(QToolBar) if bar.isVisible()]  # both rows serve the MCO tab
     qtbot.mouseClick(panel.buttons["from_mco"], Qt.MouseButton.LeftButton)
     assert "speed continuous at every join" in panel.message.text(), panel.message.text()
     findings = [panel.findings.item(i).text() for i in range(panel.findings.count())]

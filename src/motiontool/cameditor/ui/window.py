@@ -194,7 +194,7 @@ class CamEditor(EditsMixin, QMainWindow):
                 self.addToolBarBreak()
             bar = self.addToolBar("CAM-Editor" if not number else "CAM-Editor transfer")
             bar.setObjectName("cam_toolbar" if not number else "cam_toolbar_2")
-            self.kinds.currentChanged.connect(lambda index, b=bar: b.setVisible(index == 0))  # MCO curves' toolbar
+            self.kinds.currentChanged.connect(lambda index, *, b=bar: b.setVisible(index == 0))  # MCO curves' toolbar
             bar.setToolButtonStyle(Qt.ToolButtonStyle.ToolButtonIconOnly)  # text where there is no icon
             for group in groups:
                 if group is None:
