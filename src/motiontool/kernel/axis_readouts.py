@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from collections import deque
 
-from motiontool.kernel.commands import Until, command
+from motiontool.kernel.command_base import Until, command
 from motiontool.kernel.errors import ControllerError
 from motiontool.kernel.profile import Limits, _integrate, _JerkPlanner
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from motiontool.kernel.canbus import CanFrame
 from motiontool.kernel.cansdo import SdoWait, Transfer
-from motiontool.kernel.commands import COMMANDS, command
+from motiontool.kernel.command_base import COMMANDS, command
 from motiontool.kernel.errors import ControllerError
 from motiontool.kernel.vm import Wait
 

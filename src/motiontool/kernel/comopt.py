@@ -4,7 +4,7 @@ array element, word 1 in element 1 (K122)."""
 
 from __future__ import annotations
 
-from motiontool.kernel.commands import command
+from motiontool.kernel.command_base import command
 from motiontool.kernel.errors import ControllerError
 
 

@@ -12,11 +12,12 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from motiontool.aposs.image import CommandCall, ProgramImage
+from motiontool.kernel import commands, objdict
 from motiontool.kernel import io as iomod
-from motiontool.kernel import objdict
 from motiontool.kernel.arrays import ArrayMemory
 from motiontool.kernel.axis import Axis, Gains
 from motiontool.kernel.canport import CanPort
+from motiontool.kernel.command_base import motion_limits
 from motiontool.kernel.errors import AXIS_ERRORS, ControllerError, error_text
 from motiontool.kernel.interrupts import Interrupts, interrupt_readings
 from motiontool.kernel.markers import Markers
@@ -114,7 +115,6 @@ class Controller:
         self._install_readouts()
         self.markers = Markers(self)  # master/slave markers, MIPOS/IPOS, SYNCM (kernel/markers.py)
         self.can = CanPort(self)      # its CAN controller: mailboxes, PDOs, SDO (kernel/canport.py)
-        from motiontool.kernel import commands
         self._commands = commands.COMMANDS
 
     # --- parameters → models ---------------------------------------------------------------------------
@@ -303,10 +303,9 @@ class Controller:
             if axis.sync.program_ended():
                 self.message("the program ended in CAM mode: the slave disengages to the Slave Stop Position")
         elif axis.mode in ("sync", "speed"):
-            from motiontool.kernel.commands import _limits
 
             what = "speed mode" if axis.mode == "speed" else "the synchronisation"
-            axis.stop(_limits(self), remember=False)
+            axis.stop(motion_limits(self), remember=False)
             self.message(f"the program ended: {what} stops with DEC")
 
     # --- time ------------------------------------------------------------------------------------------

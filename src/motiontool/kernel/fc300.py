@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from motiontool.kernel.commands import command
+from motiontool.kernel.command_base import command
 from motiontool.kernel.errors import ControllerError
 from motiontool.kernel.fc300_table import FC_PARAMETERS, FCParam
 from motiontool.kernel.vm import Wait

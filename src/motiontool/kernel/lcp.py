@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from collections import deque
 
-from motiontool.kernel.commands import command
+from motiontool.kernel.command_base import command
 from motiontool.kernel.vm import Wait
 
 NO_KEY = -1   # CR 1707: "–1 in case no character available"

@@ -13,7 +13,8 @@ link's signals at 0x2510, DS401 I/O at 0x6000/0x6200/0x6401/0x6411 so that one s
 I/O module (IN/OUT n > 256, DG 7363-7365).
 
 Values are Python ints (integer types), str (VISIBLE_STRING) or bytes (DOMAIN); `encode`/`decode` give the
-little-endian CANopen bytes.
+little-endian CANopen bytes. The PDO objects (0x1400-0x1A03) are the PDO engine's: kernel/canpdo.py adds them to
+`OBJECTS` when it is loaded (kernel/canport.py loads it), so this module imports nothing of the CAN engines.
 """
 
 from __future__ import annotations
@@ -482,6 +483,3 @@ _communication_objects()
 _parameter_objects()
 _manufacturer_objects()
 _device_profile_objects()
-
-# the PDO objects 0x1400-0x1A03 live with the PDO engine, which registers them on import
-from motiontool.kernel import canpdo  # noqa: E402, F401

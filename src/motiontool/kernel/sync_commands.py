@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from motiontool.kernel.cam import CamMotion, CamState, active_cam, decode_curve_array
 from motiontool.kernel.cam_markers import CamMarkers
-from motiontool.kernel.commands import COMMANDS, _limits, _motion_allowed, _position, command
+from motiontool.kernel.command_base import COMMANDS, command, motion_allowed, motion_limits, position_to
 from motiontool.kernel.errors import ControllerError
 from motiontool.kernel.markers import MarkerSync
 from motiontool.kernel.sync import Gear, SyncMotion, velocity_filter_ms
@@ -30,8 +30,8 @@ def _sync_options(ctl) -> dict:
 
 @command("SYNCV")
 def syncv(ctl, vm, args):
-    _motion_allowed(ctl, "SYNCV")
-    ctl.axis.synchronise(SyncMotion("velocity", ctl.master, _gear(ctl), _limits(ctl), **_sync_options(ctl)))
+    motion_allowed(ctl, "SYNCV")
+    ctl.axis.synchronise(SyncMotion("velocity", ctl.master, _gear(ctl), motion_limits(ctl), **_sync_options(ctl)))
 
 
 @command("SYNCP")
@@ -42,7 +42,7 @@ def syncp(ctl, vm, args, markers: bool = False):
     makes slave s belong to master m instead. SYNCPOSOFFS and MOVESYNCORIGIN (master qc) shift the slave from
     there, SYNCPOSOFFS "immediately when the command SYNCP follows" (DG 9418). With `markers` it is SYNCM
     (kernel/markers.py)."""
-    _motion_allowed(ctl, "SYNCM" if markers else "SYNCP")
+    motion_allowed(ctl, "SYNCM" if markers else "SYNCP")
     marker_sync = None
     data = ctl.program_data
     values = ctl.params.values
@@ -69,7 +69,7 @@ def syncp(ctl, vm, args, markers: bool = False):
     else:
         base_master, base_slave = ctl.master.mapos, round(ctl.axis.cpos)
     gear = _gear(ctl, ctl.master.mapos - base_master + offset() + shift)
-    motion = SyncMotion("position", ctl.master, gear, _limits(ctl), offset, base_slave,
+    motion = SyncMotion("position", ctl.master, gear, motion_limits(ctl), offset, base_slave,
                         ctl.params["SYNCACCURACY"], shift=shift, **_sync_options(ctl))
     if markers:
         marker_sync = marker_sync or MarkerSync(ctl, motion, start_mode)
@@ -178,7 +178,7 @@ def curvepos(ctl, vm, args):
 
 @command("POSA CURVEPOS")
 def posa_curvepos(ctl, vm, args):
-    return _position(ctl, vm, ctl.qc(round(_cam_state(ctl, "POSA CURVEPOS").curvepos_uu())), "POSA CURVEPOS")
+    return position_to(ctl, vm, ctl.qc(round(_cam_state(ctl, "POSA CURVEPOS").curvepos_uu())), "POSA CURVEPOS")
 
 
 @command("DEFMCPOS")
@@ -199,7 +199,7 @@ def _syncc(ctl, vm, args, side: str | None = None):
     """SYNCC n / SYNCCMM n / SYNCCMS n: CAM mode for n curve cycles, 0 = until stopped (DG 7261-7263); SYNCCMM and
     SYNCCMS correct with master / slave markers, SYNCMSTART 2000 starts the count at a master marker
     (kernel/cam_markers.py)."""
-    _motion_allowed(ctl, "SYNCC")
+    motion_allowed(ctl, "SYNCC")
     motion = _cam_motion(ctl)
     if motion is not None:  # already in CAM mode: a new cycle count from now, and the marker correction it names
         motion.cycles, motion.cycles_done, motion._final = max(0, args[0]), 0, False
@@ -210,7 +210,7 @@ def _syncc(ctl, vm, args, side: str | None = None):
     data = ctl.program_data
     origin, data.sync_origin = data.sync_origin, None
     axis = ctl.axis
-    motion = CamMotion(cam, args[0], _limits(ctl), ctl.params["SYNCACCURACY"], axis.cpos, ctl.temp_origin,
+    motion = CamMotion(cam, args[0], motion_limits(ctl), ctl.params["SYNCACCURACY"], axis.cpos, ctl.temp_origin,
                        axis.scaling.posfact_z / axis.scaling.posfact_n, origin)
     start_mode = ctl.params["SYNCMSTART"]
     if side is not None or start_mode == 2000:

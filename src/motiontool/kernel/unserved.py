@@ -9,7 +9,7 @@ return TIMEOUT.
 
 from __future__ import annotations
 
-from motiontool.kernel.commands import COMMANDS, Until
+from motiontool.kernel.command_base import COMMANDS, Until
 
 TELEGRAM_TIMEOUT_MS = 300   # "No answer has been received within 300ms" (CR 1239)
 ACTIVE, TIMEOUT, BUSY = 0, -1, -3
