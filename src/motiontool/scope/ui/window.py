@@ -432,6 +432,7 @@ class ScopeWindow(RunControl, QMainWindow):
         path, _ = ask_save_name(self, "Save oscilloscope", self.path or "", "Oscilloscope files (*.zbo)")
         if not path:
             return False
+        path = path if path.lower().endswith(".zbo") else path + ".zbo"  # File ▸ Open knows it by .zbo only
         try:
             self.save_to(path, with_data=with_data)
         except OSError as exc:  # the window and its curves stay as they are (decisions R7)
