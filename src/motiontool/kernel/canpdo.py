@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 from motiontool.kernel import objdict
 from motiontool.kernel.canbus import CanFrame
 from motiontool.kernel.errors import ControllerError
+from motiontool.kernel.sysvars import read_sysvar
 
 CAN_PDOS = 4                 # PDO 1-4 on the CAN bus (0x1400-0x1403 … 0x1A00-0x1A03)
 SERIAL_PDO = 5
@@ -289,7 +290,6 @@ def _reader(target: int):
 
 
 def _read_target(ctl, target: int) -> int:
-    from motiontool.kernel.sysvars import read_sysvar
 
     try:
         value = read_sysvar(ctl, target)

@@ -19,6 +19,7 @@ from motiontool.kernel.canbus import CanBus, CanFrame
 from motiontool.kernel.canpdo import PdoEngine
 from motiontool.kernel.cansdo import SdoClient, SdoServer
 from motiontool.kernel.errors import ControllerError
+from motiontool.kernel.sysvars import read_sysvar
 
 CANNR = 3390
 # NMT states (CiA 301): the byte of heartbeat and node guarding answers
@@ -144,7 +145,6 @@ class CanPort:
 
     def _refresh_lcp(self) -> None:
         """LINKSYSVAR: one linked parameter shows its SYSVAR value every 40 ms, in turn (CR 2099-2102)."""
-        from motiontool.kernel.sysvars import read_sysvar
 
         numbers = sorted(self.lcp_links)
         number = numbers[self._lcp_next % len(numbers)]

@@ -24,6 +24,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+from motiontool.kernel import sysvars
 from motiontool.kernel.errors import ControllerError
 from motiontool.paramdb import database
 
@@ -393,8 +394,6 @@ def _user_parameter(sub: int) -> Entry:
 
 
 def _manufacturer_objects() -> None:
-    from motiontool.kernel import sysvars
-
     for k in range(ARRAY_OBJECTS):
         OBJECTS[ARRAY_BASE + k] = Obj(ARRAY_BASE + k, f"Application array {k + 1}", "ARRAY",
                                       {0: Entry(ARRAY_BASE + k, 0, "Highest sub-index supported", "UNSIGNED8", "ro",
@@ -483,3 +482,4 @@ _communication_objects()
 _parameter_objects()
 _manufacturer_objects()
 _device_profile_objects()
+sysvars.object_reader = read_sysvar

@@ -3,7 +3,13 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 AXIS_BASE = 4096
+# SYSVAR 0x01iiiiss reads object 0xiiii sub ss: kernel/objdict.py puts its reader here when it is loaded (the
+# dictionary is built on these process data, so this module imports nothing of it)
+object_reader: Callable[[Any, int], int | None] | None = None
 GUARD_ERROR_ID = 67   # SYSVAR 67 = 0x01220244: the node a CANINI guarding failed on (CR 471)
 
 # n → (name shown by the oscilloscope as "Axis: Name [Index]", unit, reader(controller) in qc or raw units)
@@ -60,10 +66,8 @@ def read_sysvar(controller, index: int) -> int | None:
         return controller.params.values.get(1900 + (index - 0x01220101), 0)
     if index == GUARD_ERROR_ID:
         return controller.can.guard_error_id
-    if index >> 24 == 1:  # any other object of the dictionary (kernel/objdict.py)
-        from motiontool.kernel.objdict import read_sysvar as read_object
-
-        value = read_object(controller, index)
+    if index >> 24 == 1 and object_reader is not None:  # any other object of the dictionary (kernel/objdict.py)
+        value = object_reader(controller, index)
         if value is not None:
             return value
     return controller.sysvar_memory.get(index)
