@@ -87,8 +87,8 @@ class IoPanel(QWidget):
             button = QPushButton(f"{title} (input {number})")
             button.setToolTip(f"On while held: a rising edge on input {number} latches the "
                               f"{'master (MIPOS)' if number == 5 else 'slave (IPOS)'} marker position")
-            button.pressed.connect(lambda n=number: self._set(n, 1))
-            button.released.connect(lambda n=number: self._set(n, int(self.toggles[n].isChecked())))
+            button.pressed.connect(lambda *_, n=number: self._set(n, 1))
+            button.released.connect(lambda *_, n=number: self._set(n, int(self.toggles[n].isChecked())))
             self.markers[number] = button
             row.addWidget(button, 0, number - 5)
         index = QLabel("Encoder index: from the simulated\nencoder, once per revolution")
@@ -130,12 +130,12 @@ class IoPanel(QWidget):
         toggle.setCheckable(True)
         toggle.setStyleSheet(TOGGLE)
         toggle.setToolTip(f"Input {number}: click to switch it on or off")
-        toggle.toggled.connect(lambda on, n=number: self._set(n, int(on)))
+        toggle.toggled.connect(lambda on, *_, n=number: self._set(n, int(on)))
         push = QPushButton("push")
         push.setMaximumWidth(52)   # three blocks side by side keep the dock narrow beside the editor
         push.setToolTip(f"Input {number} is on while this is held")
-        push.pressed.connect(lambda n=number: self._set(n, 1))
-        push.released.connect(lambda n=number: self._set(n, int(self.toggles[n].isChecked())))
+        push.pressed.connect(lambda *_, n=number: self._set(n, 1))
+        push.released.connect(lambda *_, n=number: self._set(n, int(self.toggles[n].isChecked())))
         self.toggles[number], self.pushes[number] = toggle, push
         grid.addWidget(toggle, row, column)
         grid.addWidget(push, row, column + 1)
@@ -153,7 +153,7 @@ class IoPanel(QWidget):
             slider.setToolTip(f"Analog input {number}: arrow keys ±10 (0.1 V), Page Up/Down ±100 (1 V)")
             label = QLabel()
             label.setMinimumWidth(110)
-            slider.valueChanged.connect(lambda value, n=number: self._analog_moved(n, value))
+            slider.valueChanged.connect(lambda value, *_, n=number: self._analog_moved(n, value))
             self.sliders[number], self.analog_labels[number] = slider, label
             grid.addWidget(QLabel(f"<b>{number}</b>"), row, 0)
             grid.addWidget(QLabel("-10 V"), row, 1)
