@@ -31,6 +31,7 @@ RESET_ENTRIES = (("Parameter", "parameters", "global and axis parameters go back
                  ("Arrays", "arrays", "all arrays in the controller are deleted (like DELETE ARRAYS)"),
                  ("User Parameters", "user", "the user parameters 19-xx go back to their defaults"),
                  ("Complete", "all", "parameters, arrays and stored programs: an immediate factory reset"))
+AUTOSTART_MARK = "\u2299"  # ⊙, DG 2727
 PROGRAM_NUMBERS = range(0, 91)  # DG 2627-2639: up to 91 programs, numbers 0-90
 # Memory ▸ (DG 2908-2946): the older controllers' Save RAM / Delete EPROM and the MCO 305's four entries
 MEMORY_ENTRIES = (("Save RAM", "ram", "programs, parameters and arrays are copied from RAM to the EPROM (like "
@@ -238,7 +239,10 @@ class ProgramsDialog(QDialog):
         for r, p in enumerate(rows):
             self.table.setItem(r, 0, QTableWidgetItem(str(p["number"])))
             self.table.setItem(r, 1, QTableWidgetItem(p["name"]))
-            self.table.setItem(r, 2, QTableWidgetItem("⦿" if p.get("autostart") else ""))
+            # the manual's mark (DG 2727) is in the common fonts; "⦿" was not and showed as a missing glyph
+            mark = QTableWidgetItem(AUTOSTART_MARK if p.get("autostart") else "")
+            mark.setToolTip("started when the controller is powered on" if p.get("autostart") else "")
+            self.table.setItem(r, 2, mark)
             source = QTableWidgetItem("✓" if p.get("source") else "")
             source.setToolTip(f"stored {p['stored_at']}" if p.get("stored_at") else "stored without its source")
             self.table.setItem(r, 3, source)
