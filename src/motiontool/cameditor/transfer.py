@@ -34,7 +34,10 @@ def download_config(link: Link, config: ConfigFile, sets: tuple[str, ...] = SETS
         except LinkError as exc:
             raise ConfigError(f"parameter {parameter.label}: the controller refused {value}: {exc}") from None
     if "drive" in sets:
-        _download_drive(link, config.drive)
+        try:
+            zbc_drive.write_settings(link, config.drive)
+        except LinkError as exc:
+            raise ConfigError(str(exc)) from None
     if config.arrays and "arrays" in sets:
         try:
             link.call("restore_arrays", arrays=[{"name": a.name, "values": list(a.values)} for a in config.arrays])
@@ -62,23 +65,6 @@ def upload_config(link: Link) -> ConfigFile:
             config.curves.append(curve)
         config.arrays.append(entry)
     return config
-
-
-def _download_drive(link: Link, drive: dict[str, int]) -> None:
-    """The FC 300 settings.  A range may end at another parameter (4-13 from 4-11 up, docs/fc300.md), so a value
-    the drive refuses now is tried again after the others moved its bounds; what no order makes fit is refused."""
-    left = dict(drive)
-    while left:
-        refused: dict[str, LinkError] = {}
-        for label, value in left.items():
-            try:
-                link.write_parameter(label, value)
-            except LinkError as exc:
-                refused[label] = exc
-        if len(refused) == len(left):
-            label, exc = next(iter(refused.items()))
-            raise ConfigError(f"FC 300 parameter {label}: the controller refused {left[label]}: {exc}")
-        left = {label: left[label] for label in refused}
 
 
 def _upload_drive(link: Link) -> dict[str, int]:

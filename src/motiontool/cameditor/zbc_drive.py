@@ -11,6 +11,7 @@ from __future__ import annotations
 import re
 from collections.abc import Callable
 
+from motiontool.comms.protocol import LinkError
 from motiontool.kernel.fc300_table import FC_PARAMETERS, FCParam
 
 DRIVE_FORMAT = 3
@@ -64,3 +65,21 @@ def section_lines(drive: dict[str, int]) -> list[str]:
     rows = sorted(checked(key, value) for key, value in drive.items())
     rows.sort(key=lambda row: _parameter(row[0]).number)
     return [f"[{SECTION}]", *(f"{label} = {value}" for label, value in rows), ""]
+
+
+def write_settings(link, values: dict[str, int]) -> None:
+    """Write drive settings over `link` (Restore from file, the Drive dialog's OK).  A range may end at another
+    parameter (4-13 from 4-11 up, docs/fc300.md), so a value the drive refuses now is tried again after the others
+    moved its bounds; what no order makes fit raises LinkError naming the parameter."""
+    left = dict(values)
+    while left:
+        refused: dict[str, LinkError] = {}
+        for label, value in left.items():
+            try:
+                link.write_parameter(label, value)
+            except LinkError as exc:
+                refused[label] = exc
+        if len(refused) == len(left):
+            label, exc = next(iter(refused.items()))
+            raise LinkError(f"FC 300 parameter {label}: the controller refused {left[label]}: {exc}", exc.number)
+        left = {label: left[label] for label in refused}

@@ -5,7 +5,8 @@ once against the parameter's range and options: a bad one is refused with the re
 the message line says why) and never sent; a good one is marked as changed (bold on yellow) until written. OK
 writes the changed values to the controller; choosing another controller first writes the pending values to the
 one being left, then reads the new one ("the changed values are written to the previous controller and the new
-controller's values are read", DG 2816-2818). F1 on a field shows the parameter's help."""
+controller's values are read", DG 2816-2818). F1 on a field shows the parameter's help. "Drive (FC 300)..." opens
+the drive's own parameters (ui/drive_parameters.py, I24)."""
 
 from __future__ import annotations
 
@@ -29,6 +30,8 @@ from PySide6.QtWidgets import (
 
 from motiontool.comms.protocol import LinkError
 from motiontool.paramdb import Parameter, ParameterError, database
+from motiontool.ui.controller_links import controller_link, interface_controllers
+from motiontool.ui.drive_parameters import DriveParametersDialog
 
 CHANGED = "font-weight: bold; background: #fff3b0;"
 REFUSED = "background: #ffc8c8;"
@@ -60,16 +63,6 @@ GLOBAL_GROUPS: tuple[tuple[str, Callable[[Parameter], bool]], ...] = (
 
 def grouped(groups) -> list[tuple[str, list[Parameter]]]:
     return [(title, [p for p in database() if not p.read_only and keep(p)]) for title, keep in groups]
-
-
-def interface_controllers(w) -> list[int]:
-    """The controller IDs of the window's interface."""
-    iface = w.controllers.interface(key=w.connection.interface_key)
-    return list(iface.found) or [w.bridge.controller_id]
-
-
-def controller_link(w, controller_id: int):
-    return w.controllers.link(controller_id, interface=w.connection.interface_key)
 
 
 def _text(p: Parameter, value) -> str:
@@ -181,6 +174,9 @@ class ParametersDialog(QDialog):
         buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Ok | QDialogButtonBox.StandardButton.Cancel)
         buttons.accepted.connect(self.accept)
         buttons.rejected.connect(self.reject)
+        # the drive's own parameters beside the option's, as MCT 10 shows them (I24)
+        drive = buttons.addButton("Drive (FC 300)...", QDialogButtonBox.ButtonRole.ActionRole)
+        drive.clicked.connect(lambda: show_drive(self.w, self))
         top = QHBoxLayout()
         top.addWidget(QLabel("Controller:"))
         top.addWidget(self.controller, 1)
@@ -371,3 +367,11 @@ def show_axis(w) -> None:
 def show_name(w) -> None:
     if w.development.connect_default():
         NameDialog(w).exec()
+
+
+def show_drive(w, parent=None) -> None:
+    """Parameters ▸ Drive (FC 300): from the Global and Axis dialogs' "Drive (FC 300)..." button."""
+    if w.development.connect_default():
+        dialog = DriveParametersDialog(w, parent)
+        dialog.exec()
+        dialog.deleteLater()   # its link-jobs thread ends with it
