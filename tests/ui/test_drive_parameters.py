@@ -127,3 +127,34 @@ def test_a_value_outside_its_range_is_refused_with_the_reason_and_never_sent(win
     from_axis_dialog(window, qtbot, edit)
     link = window.bridge.link
     assert (link.read_parameter("4-11"), link.read_parameter("4-13")) == (2000, 2500)
+
+
+def test_4_13_saved_to_a_file_comes_back_on_a_fresh_controller_through_the_menus(window, qtbot, tmp_path):
+    """DG 2886-2898: Save to file, then Restore from file into another controller with the sets ticked; the drive's
+    settings are the set "FC 300 drive parameters" (C19)."""
+    from motiontool.ui.controller_menu import RestoreDialog
+    from tests.modal import file_reply
+
+    def edit(dialog):
+        choose_group(qtbot, dialog, "4-** Limits / Warnings")
+        type_value(qtbot, dialog, 413, "1800")
+        click(qtbot, button(dialog, "OK"))
+        qtbot.waitUntil(lambda: not dialog.isVisible(), timeout=10_000)
+
+    from_axis_dialog(window, qtbot, edit)
+    path = tmp_path / "backup.zbc"
+    with answering(qtbot, file_reply(path)):
+        window.actions_by_text["Save to file..."].trigger()
+    assert "\n[fc300]\n4-13 = 1800\n" in path.read_text()
+
+    def restore(dialog):
+        assert isinstance(dialog, RestoreDialog)
+        dialog.controller.setCurrentIndex(dialog.controller.findData(2))
+        assert dialog.checks["drive"].text() == "FC 300 drive parameters" and dialog.checks["drive"].isChecked()
+        click(qtbot, dialog.restore_button)
+
+    fresh = window.controllers.link(2, interface=window.connection.interface_key)
+    assert fresh.read_parameter("4-13") == 1500
+    with answering(qtbot, file_reply(path), restore):
+        window.actions_by_text["Restore from file..."].trigger()
+    assert fresh.read_parameter("4-13") == 1800
