@@ -27,7 +27,8 @@ def typed_name(qtbot, seen: list[str], name: str | None = None):
     """An input dialog: note the name it suggests, type `name` over it (or keep it) and press OK."""
     def reply(dialog):
         assert isinstance(dialog, QInputDialog), f"expected an input dialog, got {dialog!r}"
-        seen.append(dialog.textValue())
+        text_mode = dialog.inputMode() == QInputDialog.InputMode.TextInput
+        seen.append(dialog.textValue() if text_mode else str(dialog.intValue()))
         if name is not None:
             edit = dialog.findChild(QLineEdit)
             edit.selectAll()
@@ -72,3 +73,24 @@ def test_the_autostart_mark_is_a_glyph_of_the_table_font(window, qtbot):
 
     in_programs_dialog(qtbot, window, body)
     assert marks == ["\u2299", True]
+
+
+def test_programs_save_as_suggests_the_programs_file_name(window, qtbot, tmp_path):
+    """DG 2655: "enter a name in the subsequent dialog field or confirm the file name suggested"; Save as
+    suggested "PROGRAM" for a sample or an unsaved program, and a saved one's name in lower case."""
+    path = tmp_path / "conveyor_sync.m"
+    path.write_text('PRINT "conveyor"\n', encoding="utf-8")
+    window.open_file(path)
+    suggested = []
+
+    def body(dialog):
+        with answering(qtbot, typed_name(qtbot, suggested), typed_name(qtbot, suggested)):
+            click(qtbot, button(dialog, "Save as..."))   # the name, then the number (0)
+        window.samples_menu.actions()[0].trigger()
+        with answering(qtbot, typed_name(qtbot, suggested)):
+            click(qtbot, button(dialog, "Save"))
+
+    in_programs_dialog(qtbot, window, body)
+    sample = window.samples_menu.actions()[0].text()
+    assert suggested == ["CONVEYOR", "0", sample.removesuffix(".m").upper()[:8]]
+    assert [p["name"] for p in window.bridge.link.call("list_programs")] == suggested[::2]

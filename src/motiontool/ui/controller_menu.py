@@ -288,9 +288,10 @@ class ProgramsDialog(QDialog):
         return ok and self.store(number=number, name=name)
 
     def _default_name(self) -> str:
+        """DG 2655: "confirm the file name suggested": the program's file name (a sample's, an unsaved one's tab
+        name) without its extension, upper case and cut to the 8 characters a stored name has."""
         editor = self.w.current_editor()
-        path = editor.property("path") if editor is not None else None
-        return (Path(path).stem if path else "PROGRAM")[:8]
+        return Path(self.w.program_label(editor)).stem.upper()[:8] if editor is not None else ""
 
     def _source(self, result) -> dict[str, str]:
         """The program (first) and the include files it read, by file name."""
