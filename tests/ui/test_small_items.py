@@ -3,8 +3,11 @@ menu actions triggered, buttons clicked with the mouse, names typed key by key."
 
 from __future__ import annotations
 
+import re
+import time
+
 from PySide6.QtCore import Qt
-from PySide6.QtGui import QFontMetrics
+from PySide6.QtGui import QAction, QFontMetrics
 from PySide6.QtWidgets import QInputDialog, QLineEdit, QPushButton
 
 from tests.modal import answering
@@ -94,3 +97,19 @@ def test_programs_save_as_suggests_the_programs_file_name(window, qtbot, tmp_pat
     sample = window.samples_menu.actions()[0].text()
     assert suggested == ["CONVEYOR", "0", sample.removesuffix(".m").upper()[:8]]
     assert [p["name"] for p in window.bridge.link.call("list_programs")] == suggested[::2]
+
+
+def test_the_array_editor_title_shows_the_read_time_as_a_date(window, qtbot):
+    """DG 4357: the "Read from Controller" string shows "the date and time when the arrays were read"; the
+    title showed the .zba file's stamp "2026:12:03 10:52" (DG 4571), which reads as a time, not a date."""
+    assert window.development.connect_default()
+    window.actions_by_text["Array Editor"].trigger()
+    editor = window._array_editor
+    qtbot.waitExposed(editor)
+    read = next(a for a in editor.findChildren(QAction) if a.text() == "Read from controller")
+    before = time.strftime("%Y-%m-%d")
+    read.trigger()
+    title = editor.windowTitle()
+    assert re.search(r", read (\d{4}-\d\d-\d\d) \d\d:\d\d\b", title), title
+    assert re.search(r"read (\S+)", title).group(1) in (before, time.strftime("%Y-%m-%d"))
+    editor.close()

@@ -27,6 +27,14 @@ from motiontool.arrayeditor.zba import ZbaError, read_zba, write_zba
 from motiontool.comms.protocol import LinkError
 from motiontool.fileio import reason
 
+
+def shown_date(stamp: str) -> str:
+    """The .zba file's "2009:07:27 10:52" (DG 4571) as people write dates: 2009-07-27 10:52."""
+    day, _, clock = stamp.partition(" ")
+    parts = day.split(":")
+    return " ".join(filter(None, ("-".join(parts) if len(parts) == 3 else day, clock)))
+
+
 COLUMNS = ("Name", "Array", "Index", "R/W", "Value", "Controller", "Default", "Minimum", "Maximum", "Description")
 VALUE, CONTROLLER = 4, 5
 GREEN, GREY, RED_BG, PENDING_BG = "#d9f2d9", "#8c8c8c", "#f6b3b3", "#fbfbe8"
@@ -191,7 +199,7 @@ class ArrayEditor(QMainWindow):
     def _title(self) -> None:
         cid = self.bridge.controller_id if self.bridge is not None and self.bridge.link is not None else None
         where = f"Controller {cid}" if cid else "no controller"
-        read = f", read {self.data_list.read_time}" if self.data_list.read_time else ""
+        read = f", read {shown_date(self.data_list.read_time)}" if self.data_list.read_time else ""
         name = f" — {self.path.name}" if self.path else ""
         self.setWindowTitle(f"Array Editor (Expert) — {where}{read}{name}")
 
