@@ -241,6 +241,17 @@ def test_parse_ids_reads_lists_and_ranges_and_names_a_bad_part():
         parse_ids("5-2")
 
 
+def confirm_deletion(qtbot, seen: dict, *, delete: bool = True):
+    """Download all's question before it deletes the stored programs: note what it names, then answer."""
+    def reply(box):
+        assert isinstance(box, QMessageBox), f"expected a message box, got {box!r}"
+        seen["asked"] = box.informativeText()
+        chosen = next(b for b in box.buttons() if b.text() == "Delete and Download") if delete \
+            else box.button(QMessageBox.StandardButton.Cancel)
+        click(qtbot, chosen)
+    return reply
+
+
 def test_download_all_stores_program_0_on_each_controller_verifies_and_sets_autostart(window, qtbot, tmp_path):
     """DG 3276-3336: one program to several controllers: delete all, download and save as program 0, Verify,
     Set Autostart; the log names the controllers done."""
@@ -257,13 +268,15 @@ def test_download_all_stores_program_0_on_each_controller_verifies_and_sets_auto
         assert dialog.file.text() == str(path) and dialog.name.text() == "LINE"
         retype(qtbot, dialog.controllers, "1-2")
         tick(qtbot, dialog.options["autostart"])
-        click(qtbot, button(dialog, "Start"))
+        with answering(qtbot, confirm_deletion(qtbot, seen)):  # controller 2 has a stored program
+            click(qtbot, button(dialog, "Start"))
         seen["log"] = dialog.log.toPlainText()
         click(qtbot, button(dialog, "Close"))
 
     with answering(qtbot, run):
         window.actions_by_text["Download all"].trigger()
     log = seen["log"]
+    assert seen["asked"] == "Controller 2: 5 OLD"
     assert "Controller 1: verify ok" in log and "Controller 2: verify ok" in log
     assert "Done for controllers: 1, 2" in log and "Failed" not in log
     for cid in (1, 2):

@@ -113,3 +113,32 @@ def test_the_array_editor_title_shows_the_read_time_as_a_date(window, qtbot):
     assert re.search(r", read (\d{4}-\d\d-\d\d) \d\d:\d\d\b", title), title
     assert re.search(r"read (\S+)", title).group(1) in (before, time.strftime("%Y-%m-%d"))
     editor.close()
+
+
+def test_download_all_asks_before_it_deletes_the_stored_programs(window, qtbot, tmp_path):
+    """DG 3316: "All existing programs on the controller are deleted"; Download all did it without a word.
+    It now names what it will delete, and Cancel leaves every program where it was."""
+    from tests.ui.test_controller_dialogs import confirm_deletion, retype
+
+    path = tmp_path / "line.m"
+    path.write_text('PRINT "line"\n', encoding="utf-8")
+    window.open_file(path)
+    assert window.development.connect_default()
+    image = window.development.compile_current().result.image.to_bytes()
+    window.controllers.link(1).download(image, number=3, name="KEEPME")
+    window.controllers.link(2).download(image, number=7, name="MINE")
+    seen = {}
+
+    def run(dialog):
+        retype(qtbot, dialog.controllers, "1-2")
+        with answering(qtbot, confirm_deletion(qtbot, seen, delete=False)):
+            click(qtbot, button(dialog, "Start"))
+        seen["log"] = dialog.log.toPlainText()
+        click(qtbot, button(dialog, "Close"))
+
+    with answering(qtbot, run):
+        window.actions_by_text["Download all"].trigger()
+    assert seen["asked"] == "Controller 1: 3 KEEPME\nController 2: 7 MINE"
+    assert "Cancelled: no program was deleted" in seen["log"]
+    assert [p["name"] for p in window.controllers.link(1).call("list_programs")] == ["KEEPME"]
+    assert [p["name"] for p in window.controllers.link(2).call("list_programs")] == ["MINE"]

@@ -22,6 +22,7 @@ from PySide6.QtWidgets import (
     QHBoxLayout,
     QLabel,
     QLineEdit,
+    QMessageBox,
     QPlainTextEdit,
     QPushButton,
     QVBoxLayout,
@@ -153,6 +154,9 @@ class DownloadDialog(QDialog):
             return False
         image = result.image.to_bytes()
         self.say(f"Compiled {path.name}: {len(image)} bytes")
+        if self.options["download"].isChecked() and not self.confirm_deletion(ids, name):
+            self.say("Cancelled: no program was deleted")
+            return False
         for cid in ids:
             if self._stopping:
                 self.say("Stopped")
@@ -163,6 +167,29 @@ class DownloadDialog(QDialog):
         if self.failed:
             self.say(f"Failed for controllers: {', '.join(map(str, self.failed))}")
         return not self.failed
+
+    def confirm_deletion(self, ids: list[int], name: str) -> bool:
+        """Download deletes every stored program first (DG 3316): the user sees which, and may cancel, before any
+        is gone. A controller that cannot be asked is left to fail in its turn."""
+        stored = []
+        for cid in ids:
+            try:
+                programs = controller_link(self.w, cid).call("list_programs")
+            except (LinkError, ValueError):
+                continue
+            if programs:
+                names = ", ".join(f"{p['number']} {p['name']}" for p in programs)
+                stored.append(f"Controller {cid}: {names}")
+        if not stored:
+            return True
+        box = QMessageBox(QMessageBox.Icon.Warning, "Download all",
+                          f"Download deletes all programs stored on the controllers before it saves \"{name}\" "
+                          "as program 0:", QMessageBox.StandardButton.Cancel, self)
+        box.setInformativeText("\n".join(stored))
+        delete = box.addButton("Delete and Download", QMessageBox.ButtonRole.DestructiveRole)
+        box.setDefaultButton(QMessageBox.StandardButton.Cancel)
+        box.exec()
+        return box.clickedButton() is delete
 
     def process(self, cid: int, image: bytes, name: str) -> bool:
         opt = {key: box.isChecked() for key, box in self.options.items()}
