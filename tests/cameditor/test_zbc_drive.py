@@ -94,17 +94,22 @@ def test_restore_without_the_drive_set_leaves_the_drive():
 
 
 @pytest.mark.wire
-def test_an_fc_protocol_link_saves_no_section_and_refuses_one_naming_the_parameter():
-    """The FC protocol's parameter channel names only the MCO 305's parameters (error 112 for 4-13): Save to file
-    over it has no [fc300] section instead of failing, and Restore says which drive parameter it could not write."""
+def test_the_drive_parameters_go_over_the_fc_protocol_link_as_over_the_embedded_one():
+    """The FC protocol's parameter channel carries the drive's own parameters too (4-13 as PNU 413, issue 25 item
+    2): Save to file over it holds the [fc300] section, Restore writes it back; a refused one is named."""
     from motiontool.comms.links import open_link
     from tests.comms.drive_process import drive_process
 
-    with drive_process() as drive:
-        link = open_link(drive.url + "#1")
+    with drive_process("--node", "1", "--node", "2") as drive:
+        first, second = open_link(drive.url + "#1"), open_link(drive.url + "#2")
         try:
-            assert upload_config(link).drive == {}
-            with pytest.raises(ConfigError, match=r"FC 300 parameter 4-13: the controller refused 1800: error 112"):
-                download_config(link, ConfigFile(drive={"4-13": 1800}))
+            first.write_parameter("4-13", 1800)
+            saved = upload_config(first)
+            assert saved.drive == {"4-13": 1800}
+            download_config(second, saved)
+            assert second.read_parameter("4-13") == 1800
+            with pytest.raises(ConfigError, match=r"FC 300 parameter 16-13: the controller refused 10"):
+                download_config(second, ConfigFile(drive={"16-13": 10}))
         finally:
-            link.close()
+            first.close()
+            second.close()

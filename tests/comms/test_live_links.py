@@ -222,3 +222,30 @@ def test_an_fc_link_comes_back_when_its_drive_restarts():
         link.close()
         if second is not None:
             second.stop()
+
+
+def test_the_fc_300s_own_parameters_over_the_fc_link():
+    """Issue 25 item 2: "The same parameters are readable and writable over the FC link (`params --link fc:… --get
+    4-13`)". The drive's parameter 4-13 travels as PNU 413 beside the option's 32-60 (PNU 3260); groups 16-** are
+    read only (DG 7594), a value beyond the range is refused by the drive with words."""
+    from motiontool.headless_params import params_on_link
+
+    rows = []
+    with drive_process("--node", "1") as drive:
+        def params(gets, sets):
+            out, err = io.StringIO(), io.StringIO()
+            code = params_on_link(drive.url + "#1", gets, sets, rows, out, err)
+            return code, out.getvalue(), err.getvalue()
+
+        code, out, err = params(["4-13", "16-13"], ["4-13=1800"])
+        assert code == 0, err
+        lines = out.splitlines()
+        assert lines[0].startswith("4-13") and lines[0].endswith(" 1800")
+        assert lines[1].startswith("4-13") and lines[1].endswith(" 1800")
+        assert lines[2].startswith("16-13")
+        code, _, err = params([], ["16-13=10"])
+        assert code == 1 and "16-13 Frequency is read-only" in err
+        code, _, err = params([], ["4-13=99999999"])
+        assert code == 1 and "4-13 Motor Speed High Limit [RPM]: 99999999 is outside 0..60000" in err
+        code, _, err = params([], ["4-11=1000", "4-13=500"])     # below 4-11: the drive's own range check
+        assert code == 1 and "--set 4-13" in err and "upper or lower limit exceeded" in err

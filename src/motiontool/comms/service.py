@@ -15,6 +15,7 @@ from motiontool.kernel import fc300
 from motiontool.kernel.arrays import MAX_ARRAY_ELEMENTS
 from motiontool.kernel.controller import Controller, Event
 from motiontool.kernel.errors import ControllerError
+from motiontool.kernel.fc300_table import link_number
 from motiontool.kernel.io import ANALOG_INPUTS, FC_INPUTS, MCO_INPUTS
 
 # the signals for streaming and traces are the drive's CANopen object 0x2510: one table, kept with the dictionary
@@ -122,13 +123,13 @@ class ControllerService:
                       c.uu(c.axis.apos), c.uu(c.axis.cpos), c.axis.axend()).to_dict()
 
     def op_read_parameter(self, key) -> int:
-        number = fc300.link_number(key)   # "4-13": the FC 300's own parameter, as GETVLT reads it (docs/fc300.md)
+        number = link_number(key)   # "4-13": the FC 300's own parameter, as GETVLT reads it (docs/fc300.md)
         if number is not None:
             return fc300.read(self.controller, number)
         return self.controller.params.get(key)
 
     def op_write_parameter(self, key, value) -> None:
-        number = fc300.link_number(key)
+        number = link_number(key)
         if number is not None:
             fc300.write(self.controller, number, 0, int(value))
             return

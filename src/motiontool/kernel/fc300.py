@@ -133,15 +133,6 @@ def write(ctl, number: int, index: int, value: int) -> None:
     fc.written[(number, index)] = int(value)
 
 
-def link_number(key) -> int | None:
-    """The FC 300 parameter a link names as "4-13" (the LCP's form), or None: the MCO 305's own groups 19, 32, 33
-    and 34 are the controller's parameters, not the drive's."""
-    group, dash, number = str(key).strip().partition("-")
-    if not (dash and group.isdigit() and number.isdigit()) or int(group) in (19, 32, 33, 34):
-        return None
-    return int(group) * 100 + int(number) if int(number) < 100 else None
-
-
 class _Transfer(Wait):
     """The command's telegram to the FC and its answer: the program waits `ms`, then gets the answer."""
 

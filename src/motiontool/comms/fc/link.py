@@ -38,6 +38,7 @@ from motiontool.comms.fc.values import from_pwe, to_pwe
 from motiontool.comms.links import LinkSpec, register_link_scheme
 from motiontool.comms.protocol import ConnectionLost, LinkError, Request
 from motiontool.comms.remote import POLL_INTERVAL_S, RemoteLink
+from motiontool.kernel.fc300_table import FC_PARAMETERS, link_number
 from motiontool.paramdb import Parameter, ParameterError, database
 
 PARAMETER_ANSWERS = (AK_VALUE_WORD, AK_VALUE_DWORD, AK_REFUSED)   # what a slave answers to a read or a write
@@ -120,11 +121,27 @@ class FcLink(RemoteLink):
             self.bus.release()
 
 
+class DriveParameter(Parameter):
+    """An FC 300 parameter of the drive itself (\"4-13\"), read and written with the same telegrams as the
+    option's: its PNU is its number without the dash (413), its value the integer the bus carries."""
+
+    @property
+    def read_only(self) -> bool:
+        return self.group == "16"        # DG 7594: "Parameter groups 16-** and 34-** are read only"
+
+
 def _parameter(key) -> Parameter:
     try:
         return database().get(key)
     except ParameterError:
-        raise LinkError(f"error 112: Unknown param. (parameter {key})", 112) from None
+        pass
+    number = link_number(key)
+    drive = FC_PARAMETERS.get(number) if number is not None else None
+    if drive is None:
+        raise LinkError(f"error 112: Unknown param. (parameter {key})", 112)
+    # the range the drive may narrow (a limit that ends at another parameter) is checked by the drive
+    return DriveParameter(drive.label, drive.number, drive.name, drive.source, drive.label.partition("-")[0],
+                          drive.default, drive.low, drive.high, "", {}, None, "Int32", True, drive.source)
 
 
 # --- opening and scanning ------------------------------------------------------------------------------------

@@ -30,6 +30,7 @@ from motiontool.comms.fc.telegram import (
     AK_NONE,
     AK_READ,
     AK_REFUSED,
+    AK_VALUE_DWORD,
     AK_WRITE_DWORD,
     AK_WRITE_DWORD_EEPROM,
     AK_WRITE_WORD,
@@ -45,6 +46,9 @@ from motiontool.comms.fc.telegram import (
 from motiontool.comms.fc.values import from_pwe, to_pwe
 from motiontool.comms.links import LinkSpec
 from motiontool.comms.protocol import LinkError
+from motiontool.kernel import fc300
+from motiontool.kernel.errors import ControllerError
+from motiontool.kernel.fc300_table import FC_PARAMETERS
 from motiontool.paramdb import ParameterError, database
 
 WRITES = (AK_WRITE_WORD, AK_WRITE_DWORD, AK_WRITE_WORD_EEPROM, AK_WRITE_DWORD_EEPROM)
@@ -122,6 +126,8 @@ class FcSlave:
         try:
             p = database().get(t.pnu)
         except ParameterError:
+            if t.pnu in FC_PARAMETERS:   # the drive's own parameter (4-13 is PNU 413), beside the option's
+                return self._drive_parameter(address, t, pcd)
             return parameter(t.adr, AK_REFUSED, t.pnu, 0, t.ind, pcd)
         try:
             with self.drive.lock:
@@ -136,6 +142,22 @@ class FcSlave:
             return parameter(t.adr, AK_REFUSED, t.pnu, code, t.ind, pcd)
         ak, pwe = to_pwe(p, value)
         return parameter(t.adr, ak, t.pnu, pwe, t.ind, pcd)
+
+    def _drive_parameter(self, address: int, t: Telegram, pcd) -> Telegram:
+        """An FC 300 parameter, at the telegram's index (5-40 index 1), as GETVLTSUB/SETVLTSUB reach it."""
+        controller = self.drive.nodes[address].service.controller
+        try:
+            with self.drive.lock:
+                if t.ak in WRITES:
+                    word = t.ak in (AK_WRITE_WORD, AK_WRITE_WORD_EEPROM)
+                    value = t.pwe - (1 << 16 if word else 1 << 32) if t.pwe >> (15 if word else 31) else t.pwe
+                    fc300.write(controller, t.pnu, t.ind, value)
+                value = fc300.read(controller, t.pnu, t.ind)
+        except ControllerError as exc:
+            read_only = "read only" in str(exc)
+            code = 1 if read_only else 3 if "no index" in str(exc) else 2 if exc.number == 183 else 18
+            return parameter(t.adr, AK_REFUSED, t.pnu, code, t.ind, pcd)
+        return parameter(t.adr, AK_VALUE_DWORD, t.pnu, value & 0xFFFFFFFF, t.ind, pcd)
 
     def close(self) -> None:
         for channel in self.channels.values():
