@@ -142,3 +142,19 @@ def test_download_all_asks_before_it_deletes_the_stored_programs(window, qtbot, 
     assert "Cancelled: no program was deleted" in seen["log"]
     assert [p["name"] for p in window.controllers.link(1).call("list_programs")] == ["KEEPME"]
     assert [p["name"] for p in window.controllers.link(2).call("list_programs")] == ["MINE"]
+
+
+def test_enter_in_the_help_index_opens_the_hit(window, qtbot):
+    """DG 3262: Help ▸ Index shows the help's Index tab; typing a word and Enter opened nothing."""
+    window.actions_by_text["Index"].trigger()
+    help_window = window.help_window
+    qtbot.waitExposed(help_window)
+    qtbot.keyClicks(help_window.search, "kprop", delay=20)
+    qtbot.keyClick(help_window.search, Qt.Key.Key_Return)
+    assert help_window.index.currentItem().text() == "32-60 KPROP (parameter)"
+    assert "32-60 KPROP" in help_window.page.toPlainText() and help_window.isVisible()
+    help_window.search.selectAll()
+    qtbot.keyClicks(help_window.search, "posa", delay=20)
+    qtbot.keyClick(help_window.search, Qt.Key.Key_Enter)   # the keypad's Enter too
+    assert help_window.page.toPlainText().startswith("POSA")
+    help_window.close()

@@ -83,6 +83,7 @@ class HelpWindow(QDialog):
         self.search = QLineEdit()
         self.search.setPlaceholderText("Search commands, parameters and objects")
         self.search.textChanged.connect(self._filter)
+        self.search.returnPressed.connect(self.open_hit)
         self.index = QListWidget()
         self.index.currentItemChanged.connect(lambda item, _previous: self._show_item(item))
         self.page = QTextBrowser()
@@ -116,6 +117,20 @@ class HelpWindow(QDialog):
         for row in range(self.index.count()):
             item = self.index.item(row)
             item.setHidden(bool(needle) and needle not in item.text().lower())
+
+    def open_hit(self) -> bool:
+        """Enter in the search field opens the selected hit if it is shown, else the first one, as the Index tab
+        of the Windows help does (DG 3262); nothing when there is none."""
+        current = self.index.currentItem()
+        if current is None or current.isHidden():
+            current = next((self.index.item(row) for row in range(self.index.count())
+                            if not self.index.item(row).isHidden()), None)
+        if current is None:
+            return False
+        self.index.setCurrentItem(current)
+        self.index.scrollToItem(current)
+        self._show_item(current)   # also when it was already the current item
+        return True
 
     def _show_item(self, item: QListWidgetItem | None) -> None:
         if item is None:
