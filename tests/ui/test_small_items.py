@@ -158,3 +158,28 @@ def test_enter_in_the_help_index_opens_the_hit(window, qtbot):
     qtbot.keyClick(help_window.search, Qt.Key.Key_Enter)   # the keypad's Enter too
     assert help_window.page.toPlainText().startswith("POSA")
     help_window.close()
+
+
+def test_select_controller_shows_the_names_given_with_parameters_name(window, qtbot):
+    """DG 2872: the name "is displayed in various dialogs … allowing you to more easily differentiate between
+    multiple controllers"; Select Controller listed only "Controller 1" … "Controller 4"."""
+    assert window.development.connect_default()
+    window.bridge.link.call("set_name", name="PRESS")
+    window.controllers.link(3).call("set_name", name="FEEDER")
+    rows = {}
+
+    def reply(dialog):
+        tree = dialog.tree
+        rows["header"] = tree.headerItem().text(1)
+        top = tree.topLevelItem(0)
+        for j in range(top.childCount()):
+            rows[top.child(j).text(0)] = top.child(j).text(1)
+        item = next(top.child(j) for j in range(top.childCount()) if top.child(j).text(1) == "FEEDER")
+        qtbot.mouseClick(tree.viewport(), Qt.MouseButton.LeftButton, pos=tree.visualItemRect(item).center())
+        click(qtbot, dialog.buttons.button(dialog.buttons.StandardButton.Ok))
+
+    with answering(qtbot, reply):
+        window.actions_by_text["Select Controller..."].trigger()
+    assert rows == {"header": "Name", "Controller 1": "PRESS", "Controller 2": "", "Controller 3": "FEEDER",
+                    "Controller 4": ""}
+    assert window.bridge.controller_id == 3

@@ -26,6 +26,7 @@ from PySide6.QtWidgets import (
     QVBoxLayout,
 )
 
+from motiontool.comms.protocol import LinkError
 from motiontool.ui.controllers import BAUDS, SIMULATED_IDS, ControllerRegistry, InterfaceConfig
 
 KINDS = {"sim": "Simulator (embedded MCO 305)", "fc": "FC protocol (RS-485 / USB)",
@@ -159,7 +160,7 @@ class SelectControllerDialog(QDialog):
         self.registry = registry
         self.configs, default_kind = load_interfaces(settings)
         self.tree = QTreeWidget()
-        self.tree.setHeaderLabels(["Interface / controller"])
+        self.tree.setHeaderLabels(["Interface / controller", "Name"])
         self.interface = QComboBox()
         for kind, text in KINDS.items():
             self.interface.addItem(f"{text}: {self.configs[kind].description}", kind)
@@ -193,15 +194,29 @@ class SelectControllerDialog(QDialog):
             top = QTreeWidgetItem([iface.config.description])
             self.tree.addTopLevelItem(top)
             for cid in iface.found:
-                item = QTreeWidgetItem([f"Controller {cid}"])
+                item = QTreeWidgetItem([f"Controller {cid}", self.controller_name(iface, cid)])
                 item.setData(0, ROLE, (key, cid))
                 top.addChild(item)
                 first = first or item
             if not iface.found:
                 top.addChild(QTreeWidgetItem([f"no controller answered in {iface.config.first}..{iface.config.last}"]))
             top.setExpanded(True)
+        self.tree.resizeColumnToContents(0)
         if first is not None:
             self.tree.setCurrentItem(first)
+
+    @staticmethod
+    def controller_name(iface, cid: int) -> str:
+        """The name given with Parameters ▸ Name (DG 2872: "displayed in various dialogs … to more easily
+        differentiate between multiple controllers"), from a controller already connected; one not connected
+        is not opened just for its name (a bus would be asked once per controller)."""
+        link = iface.links.get(cid)
+        if link is None or not getattr(link, "alive", True):
+            return ""
+        try:
+            return str(link.call("identify").get("name", ""))
+        except (LinkError, OSError):
+            return ""
 
     def open_selected_interface(self) -> None:
         """Open Interface (DG 2540): scan the chosen interface; the default interface stays as it is."""
