@@ -183,3 +183,28 @@ def test_select_controller_shows_the_names_given_with_parameters_name(window, qt
     assert rows == {"header": "Name", "Controller 1": "PRESS", "Controller 2": "", "Controller 3": "FEEDER",
                     "Controller 4": ""}
     assert window.bridge.controller_id == 3
+
+
+def test_the_command_list_has_aligned_columns_and_a_filter(window, qtbot):
+    """DG 2554-2558: the Command List "offers a list all commands with their syntax"; the syntax was padded
+    with spaces after the name in a proportional font (no two rows aligned) and 150 commands had no search."""
+    editor = window.new_file()
+    window.actions_by_text["Command List..."].trigger()
+    dialog = window.command_list
+    qtbot.waitExposed(dialog)
+    tree = dialog.list
+    rows = [tree.topLevelItem(i) for i in range(0, tree.topLevelItemCount(), 7)]
+    starts = {tree.visualItemRect(item).left() + tree.header().sectionPosition(1) for item in rows}
+    assert len(starts) == 1 and all(item.text(1) == dialog.commands[tree.indexOfTopLevelItem(item)].syntax
+                                    for item in rows)
+    widest = max(tree.fontMetrics().horizontalAdvance(c.name) for c in dialog.commands)
+    assert tree.header().sectionSize(0) >= widest
+    qtbot.keyClicks(dialog.filter, "posa", delay=20)
+    assert dialog.shown()[0] == "POSA" and all("POSA" in (n + tree.topLevelItem(
+        [c.name for c in dialog.commands].index(n)).text(1)).upper() for n in dialog.shown())
+    qtbot.keyClick(dialog.filter, Qt.Key.Key_Return)   # chooses the first hit; inserts nothing
+    assert dialog.current().name == "POSA" and editor.toPlainText() == ""
+    qtbot.keyClicks(dialog.fields[0], "3000", delay=20)
+    click(qtbot, dialog.insert_button)
+    assert editor.toPlainText() == "POSA 3000"
+    dialog.close()

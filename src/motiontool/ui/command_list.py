@@ -12,10 +12,11 @@ from PySide6.QtWidgets import (
     QHBoxLayout,
     QLabel,
     QLineEdit,
-    QListWidget,
     QPushButton,
     QSplitter,
     QTextBrowser,
+    QTreeWidget,
+    QTreeWidgetItem,
     QVBoxLayout,
     QWidget,
 )
@@ -42,6 +43,25 @@ def preview_line(command: Command, values: list[str], comment: str = "") -> str:
     return line
 
 
+class _FilterField(QLineEdit):
+    """Enter chooses the first command shown instead of reaching the dialog's default button (Insert), and Down
+    goes on into the list, as in a search field."""
+
+    def __init__(self, dialog: CommandListDialog) -> None:
+        super().__init__()
+        self.dialog = dialog
+
+    def keyPressEvent(self, event) -> None:  # noqa: N802 - Qt override
+        if event.key() in (Qt.Key.Key_Return, Qt.Key.Key_Enter):
+            self.dialog.first_shown()
+            event.accept()
+        elif event.key() == Qt.Key.Key_Down:
+            self.dialog.list.setFocus()
+            event.accept()
+        else:
+            super().keyPressEvent(event)
+
+
 class CommandListDialog(QDialog):
     insert_requested = Signal(str)
     execute_requested = Signal(str)
@@ -52,11 +72,24 @@ class CommandListDialog(QDialog):
         self.resize(760, 460)
         self.commands = sorted((c for c in command_table() if c.kind in ("command", "sysvar", "function")
                                 and (c.statement or c.returns != "none")), key=lambda c: c.name)
-        self.list = QListWidget()
-        for c in self.commands:
-            self.list.addItem(f"{c.name:<16} {c.syntax}")
-        self.list.setFont(self.font())
-        self.list.currentRowChanged.connect(self._select)
+        # two columns, not "NAME<16 spaces>syntax" in one: padding with spaces aligns nothing in a proportional font
+        self.list = QTreeWidget()
+        self.list.setHeaderLabels(["Command", "Syntax"])
+        self.list.setRootIsDecorated(False)
+        self.list.setUniformRowHeights(True)
+        self.list.addTopLevelItems([QTreeWidgetItem([c.name, c.syntax]) for c in self.commands])
+        self.list.resizeColumnToContents(0)
+        self.list.currentItemChanged.connect(lambda item, _previous: self._select(self.list.indexOfTopLevelItem(item))
+                                             if item is not None else None)
+        self.filter = _FilterField(self)
+        self.filter.setPlaceholderText("Filter: part of a command's name or syntax")
+        self.filter.setClearButtonEnabled(True)
+        self.filter.textChanged.connect(self._filter)
+        left = QWidget()
+        column = QVBoxLayout(left)
+        column.setContentsMargins(0, 0, 0, 0)
+        column.addWidget(self.filter)
+        column.addWidget(self.list, 1)
         self.form = QFormLayout()
         self.fields: list[QLineEdit | QComboBox] = []
         self.comment = QLineEdit()
@@ -75,9 +108,9 @@ class CommandListDialog(QDialog):
         right.addWidget(self.preview)
         right.addWidget(self.help, 1)
         splitter = QSplitter()
-        splitter.addWidget(self.list)
+        splitter.addWidget(left)
         splitter.addWidget(fields_box)
-        splitter.setSizes([300, 460])
+        splitter.setSizes([340, 420])
         buttons = QDialogButtonBox()
         self.insert_button = QPushButton("Insert")
         self.execute_button = QPushButton("Execute now")
@@ -93,16 +126,40 @@ class CommandListDialog(QDialog):
         row = QHBoxLayout()
         row.addWidget(buttons)
         layout.addLayout(row)
-        self.list.setCurrentRow(0)
+        self.list.setCurrentItem(self.list.topLevelItem(0))
+        self.filter.setFocus()
 
     def select_command(self, name: str) -> None:
         for i, c in enumerate(self.commands):
             if c.name == name.upper():
-                self.list.setCurrentRow(i)
+                self.list.setCurrentItem(self.list.topLevelItem(i))
                 return
 
     def current(self) -> Command:
-        return self.commands[max(self.list.currentRow(), 0)]
+        return self.commands[max(self.list.indexOfTopLevelItem(self.list.currentItem()), 0)]
+
+    def shown(self) -> list[str]:
+        """The command names the filter leaves in the list, in order."""
+        return [self.list.topLevelItem(i).text(0) for i in range(self.list.topLevelItemCount())
+                if not self.list.topLevelItem(i).isHidden()]
+
+    def _filter(self, text: str) -> None:
+        needle = text.strip().upper()
+        for i, c in enumerate(self.commands):
+            self.list.topLevelItem(i).setHidden(bool(needle) and needle not in c.name
+                                                and needle not in c.syntax.upper())
+        current = self.list.currentItem()
+        if current is None or current.isHidden():
+            self.first_shown()
+
+    def first_shown(self) -> None:
+        """Enter in the filter (or a filter that hid the selected command): the first command still shown."""
+        for i in range(self.list.topLevelItemCount()):
+            item = self.list.topLevelItem(i)
+            if not item.isHidden():
+                self.list.setCurrentItem(item)
+                self.list.scrollToItem(item)
+                return
 
     def _select(self, row: int) -> None:
         while self.form.rowCount():
