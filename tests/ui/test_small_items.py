@@ -6,9 +6,16 @@ from __future__ import annotations
 import re
 import time
 
-from PySide6.QtCore import Qt
-from PySide6.QtGui import QAction, QFontMetrics
-from PySide6.QtWidgets import QInputDialog, QLineEdit, QPushButton
+from PySide6.QtCore import Qt, QTimer
+from PySide6.QtGui import QAction, QContextMenuEvent, QFontMetrics
+from PySide6.QtWidgets import (
+    QApplication,
+    QDialogButtonBox,
+    QInputDialog,
+    QLineEdit,
+    QMenu,
+    QPushButton,
+)
 
 from tests.modal import answering
 
@@ -208,3 +215,65 @@ def test_the_command_list_has_aligned_columns_and_a_filter(window, qtbot):
     click(qtbot, dialog.insert_button)
     assert editor.toPlainText() == "POSA 3000"
     dialog.close()
+
+
+def double_click(qtbot, view, pos) -> None:
+    """As a user does: the first click selects, the second (a double click) acts."""
+    qtbot.mouseClick(view.viewport(), Qt.MouseButton.LeftButton, pos=pos)
+    qtbot.mouseDClick(view.viewport(), Qt.MouseButton.LeftButton, pos=pos)
+
+
+def context_menu(qtbot, widget, pos, entry: str, seen: list) -> None:
+    """Right-click at `pos` in `widget`, note the menu's entries and whether each is enabled, click `entry`."""
+    def choose() -> None:
+        menu = QApplication.activePopupWidget()
+        assert isinstance(menu, QMenu), menu
+        seen.append({a.text(): a.isEnabled() for a in menu.actions() if a.text()})
+        action = next(a for a in menu.actions() if a.text() == entry)
+        qtbot.mouseClick(menu, Qt.MouseButton.LeftButton, pos=menu.actionGeometry(action).center())
+
+    QTimer.singleShot(150, choose)
+    QApplication.sendEvent(widget, QContextMenuEvent(QContextMenuEvent.Reason.Mouse, pos, widget.mapToGlobal(pos)))
+
+
+def test_the_watch_shows_whole_names_and_has_a_context_menu(window, qtbot):
+    """DG L2452-2477: the Watch window lists the watched values; its Name column cut "Axis 1: TRACKERR
+    (parameter)" at 100 px and a right-click did nothing: now Copy value, Remove, Clear all."""
+    editor = window.new_file()
+    editor.setPlainText("counter = 41\ncounter = counter + 1\nDELAY 100000\n")
+    window.actions_by_text["Prepare Singlestep"].trigger()
+    assert window.debugger.active
+
+    def add(dialog):
+        for name in ("counter",):
+            item = dialog.program.findItems(name, Qt.MatchFlag.MatchExactly)[0]
+            double_click(qtbot, dialog.program, dialog.program.visualItemRect(item).center())
+        params = dialog.system.topLevelItem(1)
+        for j in range(params.childCount()):
+            double_click(qtbot, dialog.system, dialog.system.visualItemRect(params.child(j)).center())
+        click(qtbot, dialog.findChild(QDialogButtonBox).button(QDialogButtonBox.StandardButton.Close))
+
+    with answering(qtbot, add):
+        window.actions_by_text["Watch Add"].trigger()
+    window.actions_by_text["Go"].trigger()
+    window.actions_by_text["Watch Start"].trigger()
+    pane = window.debugger.watch
+    table = pane.table
+    qtbot.waitUntil(lambda: pane.values()[0] == "42", timeout=10000)
+    window.actions_by_text["Watch Stop"].trigger()
+    metrics = table.fontMetrics()
+    for row in range(table.rowCount()):
+        assert table.columnWidth(0) >= metrics.horizontalAdvance(table.item(row, 0).text()), table.item(row, 0).text()
+    assert table.viewport().height() >= 4 * table.rowHeight(0)
+
+    seen = []
+    QApplication.clipboard().clear()
+    context_menu(qtbot, table.viewport(), table.visualItemRect(table.item(0, 1)).center(), "Copy value", seen)
+    assert QApplication.clipboard().text() == "42"
+    kprop = next(r for r in range(table.rowCount()) if "KPROP" in table.item(r, 0).text())
+    context_menu(qtbot, table.viewport(), table.visualItemRect(table.item(kprop, 0)).center(), "Remove", seen)
+    assert "KPROP" not in [e.key for e in pane.entries] and table.rowCount() == len(pane.entries) > 1
+    context_menu(qtbot, table.viewport(), table.visualItemRect(table.item(0, 0)).center(), "Clear all", seen)
+    assert pane.entries == [] and table.rowCount() == 0
+    assert seen[0] == {"Copy value": True, "Remove": True, "Clear all": True, "Watch Add...": True}
+    window.actions_by_text["End Debug"].trigger()

@@ -13,16 +13,19 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from PySide6.QtCore import Qt
-from PySide6.QtGui import QKeyEvent
+from PySide6.QtGui import QContextMenuEvent, QKeyEvent
 from PySide6.QtWidgets import (
     QAbstractItemView,
+    QApplication,
     QComboBox,
     QDialog,
     QDialogButtonBox,
     QDockWidget,
     QHBoxLayout,
+    QHeaderView,
     QLabel,
     QListWidget,
+    QMenu,
     QSpinBox,
     QTableWidget,
     QTableWidgetItem,
@@ -76,11 +79,30 @@ class _Table(QTableWidget):
         super().__init__(0, 2)
         self.pane = pane
         self.setHorizontalHeaderLabels(["Name", "Value"])
+        # names as wide as the longest ("Axis 1: TRACKERR (parameter)" was cut at 100 px), values take the rest
+        self.horizontalHeader().setSectionResizeMode(0, QHeaderView.ResizeMode.ResizeToContents)
         self.horizontalHeader().setStretchLastSection(True)
         self.verticalHeader().hide()
+        self.verticalHeader().setDefaultSectionSize(self.fontMetrics().height() + 6)
+        self.setMinimumSize(320, self.fontMetrics().height() * 7)  # a docked pane keeps room for a few rows
         self.setEditTriggers(QAbstractItemView.EditTrigger.DoubleClicked | QAbstractItemView.EditTrigger.EditKeyPressed
                              | QAbstractItemView.EditTrigger.AnyKeyPressed)
         self.setSelectionBehavior(QAbstractItemView.SelectionBehavior.SelectRows)
+
+    def contextMenuEvent(self, event: QContextMenuEvent) -> None:  # noqa: N802 (Qt override)
+        """Copy value, Remove (the row under the pointer), Clear all, Watch Add (DG L2456 has only Delete)."""
+        row = self.rowAt(event.pos().y()) if event.reason() == QContextMenuEvent.Reason.Mouse else self.currentRow()
+        if row >= 0:
+            self.selectRow(row)
+        menu = QMenu(self)
+        copy = menu.addAction("Copy value", lambda: QApplication.clipboard().setText(self.item(row, 1).text()))
+        remove = menu.addAction("Remove", lambda: self.pane.remove(row))
+        copy.setEnabled(row >= 0)
+        remove.setEnabled(row >= 0)
+        menu.addAction("Clear all", self.pane.clear).setEnabled(bool(self.pane.entries))
+        menu.addSeparator()
+        menu.addAction("Watch Add...", self.pane.show_add_dialog)
+        menu.exec(event.globalPos())
 
     def keyPressEvent(self, event: QKeyEvent) -> None:  # noqa: N802 (Qt override)
         if event.key() == Qt.Key.Key_Delete and self.currentRow() >= 0:  # DG L2456: Delete removes the entry
@@ -161,6 +183,11 @@ class WatchPane(QDockWidget):
         del self.entries[row]
         self.table.removeRow(row)
         self.hint.setVisible(len(self.entries) > HINT_ENTRIES)
+
+    def clear(self) -> None:
+        self.entries.clear()
+        self.table.setRowCount(0)
+        self.hint.hide()
 
     def values(self) -> list[str]:
         return [self.table.item(r, 1).text() for r in range(self.table.rowCount())]
