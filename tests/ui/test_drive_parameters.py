@@ -158,3 +158,17 @@ def test_4_13_saved_to_a_file_comes_back_on_a_fresh_controller_through_the_menus
     with answering(qtbot, file_reply(path), restore):
         window.actions_by_text["Restore from file..."].trigger()
     assert fresh.read_parameter("4-13") == 1800
+
+
+def test_the_drive_dialog_has_its_own_menu_entry(window, qtbot):
+    """Controller ▸ Parameters ▸ Drive (FC 300)... opens the dialog directly, beside Global, Axis and Name."""
+    def drive(dialog):
+        assert isinstance(dialog, DriveParametersDialog)
+        dialog.activateWindow()
+        qtbot.waitUntil(dialog.isActiveWindow, timeout=2000)
+        loaded(qtbot, dialog)
+        assert cell(dialog, 413).text() == "1500"
+        click(qtbot, button(dialog, "Cancel"))
+
+    with answering(qtbot, drive):
+        window.actions_by_text["Drive (FC 300)..."].trigger()

@@ -69,6 +69,7 @@ def build_menus(w) -> None:
             ("P&arameters", None, [("Global...", None, lambda: _parameters(w, "global")),
                                    ("Axis...", None, lambda: _parameters(w, "axis")),
                                    ("Name...", None, lambda: _parameters(w, "name")),
+                                   ("Drive (FC 300)...", None, lambda: _parameters(w, "drive")),
                                    ("Save to file...", None, lambda: cm.save_parameters(w)),
                                    ("Restore from file...", None, lambda: cm.restore_parameters(w))]),
             ("&Memory", None, [(title, None, lambda *, k=key: cm.memory(w, k))
@@ -259,7 +260,7 @@ def _parameters(w, which: str) -> None:
     from motiontool.ui import parameter_dialogs
 
     {"global": parameter_dialogs.show_global, "axis": parameter_dialogs.show_axis,
-     "name": parameter_dialogs.show_name}[which](w)
+     "name": parameter_dialogs.show_name, "drive": parameter_dialogs.show_drive}[which](w)
 
 
 def _download_all(w) -> None:
