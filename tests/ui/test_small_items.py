@@ -277,3 +277,34 @@ def test_the_watch_shows_whole_names_and_has_a_context_menu(window, qtbot):
     assert pane.entries == [] and table.rowCount() == 0
     assert seen[0] == {"Copy value": True, "Remove": True, "Clear all": True, "Watch Add...": True}
     window.actions_by_text["End Debug"].trigger()
+
+
+def test_the_value_popup_leaves_the_next_line_readable_and_goes_when_a_dialog_opens(window, qtbot):
+    """DG L3440-3444: a click on a variable shows its value "in a yellow popup box"; it was put 14 px below
+    the click, over the next line, and stayed on top of a dialog opened meanwhile."""
+    from tests.ui.test_debugger import _point_at, _prepare
+
+    editor = _prepare(window, qtbot)
+    qtbot.keyClick(editor, Qt.Key.Key_F9)                     # i = 1 has run
+    qtbot.waitUntil(lambda: editor.debug_current == 4, timeout=5000)
+    at = _point_at(editor, 3, 1)                              # the `i` of `i = 1`
+    qtbot.mouseClick(editor.viewport(), Qt.MouseButton.LeftButton, pos=at)
+    popup = editor.value_popup
+    qtbot.waitUntil(lambda: popup is not None and popup.isVisible(), timeout=2000)
+    cursor = editor.textCursor()
+    cursor.setPosition(editor.document().findBlockByNumber(3).position())   # line 4, `while …`
+    next_line = editor.cursorRect(cursor)
+    next_line.moveTopLeft(editor.viewport().mapToGlobal(next_line.topLeft()))
+    next_line.setWidth(editor.viewport().width())
+    assert popup.text() == "i = 1" and not popup.geometry().intersects(next_line), (popup.geometry(), next_line)
+
+    open_while = []
+
+    def look(dialog):
+        open_while.append(popup.isVisible())
+        dialog.reject()
+
+    with answering(qtbot, look):
+        window.actions_by_text["Watch Add"].trigger()
+    assert open_while == [False] and not popup.isVisible()
+    window.actions_by_text["End Debug"].trigger()

@@ -13,7 +13,7 @@ from collections.abc import Callable, Iterable
 
 from PySide6.QtCore import QPoint, Qt
 from PySide6.QtGui import QColor, QTextBlock, QTextBlockUserData, QTextCursor, QTextFormat
-from PySide6.QtWidgets import QLabel, QTextEdit, QToolTip, QWidget
+from PySide6.QtWidgets import QApplication, QLabel, QTextEdit, QToolTip, QWidget
 
 MAX_BREAKPOINTS = 10  # DG L3414, L3430
 DOT_BLUE, DOT_RED, NEXT_STATEMENT = "#2a6fdb", "#d62828", "#fff36b"
@@ -23,19 +23,32 @@ AWAY_PX = 12  # the value popup closes when the mouse is this far from where it 
 
 class ValuePopup(QLabel):
     """The yellow value popup of a left click on a variable (DG L3440-3444): it stays after the button is
-    released, until the mouse moves away (a QToolTip closed on the release)."""
+    released, until the mouse moves away (a QToolTip closed on the release). It sits above the clicked line,
+    so the line below stays readable, and goes when the focus moves anywhere (a dialog, another window): a
+    tool-tip window would otherwise float over the dialog."""
 
     def __init__(self, parent: QWidget) -> None:
         super().__init__(parent, Qt.WindowType.ToolTip)
         self.setStyleSheet("background: #ffffc0; color: black; border: 1px solid #8a8a5c; padding: 2px 5px;")
         self.anchor = QPoint()
+        QApplication.instance().focusChanged.connect(self._focus_changed)
 
-    def show_at(self, global_pos: QPoint, text: str) -> None:
+    def show_at(self, global_pos: QPoint, text: str, *, line_top: int | None = None) -> None:
+        """At the click, its bottom on the top of the clicked line (`line_top`, global); below the line only
+        where there is no room above it on the screen."""
         self.setText(text)
         self.adjustSize()
         self.anchor = QPoint(global_pos)
-        self.move(global_pos + QPoint(10, 14))
+        top = (global_pos.y() if line_top is None else line_top) - self.height() - 1
+        screen = QApplication.screenAt(global_pos)
+        if screen is not None and top < screen.availableGeometry().top():
+            top = global_pos.y() + 14
+        self.move(global_pos.x() + 10, top)
         self.show()
+
+    def _focus_changed(self, _old, _new) -> None:
+        if self.isVisible():
+            self.hide()
 
     def mouse_moved(self, global_pos: QPoint) -> None:
         if self.isVisible() and (global_pos - self.anchor).manhattanLength() > AWAY_PX:
@@ -165,7 +178,9 @@ class DebugMarksMixin:
             return False
         if self.value_popup is None:
             self.value_popup = ValuePopup(self.viewport())
-        self.value_popup.show_at(self.viewport().mapToGlobal(pos), f"{name} = {value}")
+        line_top = self.cursorRect(self.cursorForPosition(pos)).top()
+        self.value_popup.show_at(self.viewport().mapToGlobal(pos), f"{name} = {value}",
+                                 line_top=self.viewport().mapToGlobal(QPoint(0, line_top)).y())
         return True
 
     def debug_mouse_move(self, event) -> None:
