@@ -308,3 +308,23 @@ def test_the_value_popup_leaves_the_next_line_readable_and_goes_when_a_dialog_op
         window.actions_by_text["Watch Add"].trigger()
     assert open_while == [False] and not popup.isVisible()
     window.actions_by_text["End Debug"].trigger()
+
+
+def test_file_sample_offers_the_apc_guides_dpl_programs(window, qtbot):
+    """Seed 004 §7.1-7.6: the APC user guide's six complete DPL programs are under File ▸ Sample (there were
+    APOSS samples only); each opens as a DPL program with the guide's text and passes Syntax Check."""
+    from pathlib import Path
+
+    programs = Path(__file__).resolve().parent.parent / "dpl" / "programs"
+    actions = window.dpl_samples_menu.actions()
+    assert [a.text() for a in actions] == [f"apc_{p.stem[1:]}.dpl" for p in sorted(programs.glob("s7_*.dpl"))]
+    assert len(actions) >= 6
+    for action in actions:
+        action.trigger()
+        editor = window.current_editor()
+        assert window.tabs.tabText(window.tabs.currentIndex()) == action.text() and editor.language == "dpl"
+        assert editor.toPlainText() == (programs / f"s{action.text()[4:]}").read_text(encoding="utf-8")
+        window.messages.clear()
+        qtbot.keyClick(editor, Qt.Key.Key_F4)
+        qtbot.waitUntil(lambda: "Syntax check" in window.messages.toPlainText(), timeout=10000)
+        assert "Syntax check: no errors" in window.messages.toPlainText(), window.messages.toPlainText()

@@ -12,8 +12,8 @@ from motiontool.resources import resources_path
 from motiontool.ui import controller_menu as cm
 
 
-def _samples() -> list[str]:
-    return sorted(p.name for p in resources_path("samples").glob("*.m"))
+def _samples(pattern: str = "*.m") -> list[str]:
+    return sorted(p.name for p in resources_path("samples").glob(pattern))
 
 
 def build_menus(w) -> None:
@@ -112,6 +112,11 @@ def build_menus(w) -> None:
                 sub = menu.addMenu(text)
                 for name in _samples():
                     sub.addAction(name, lambda *, n=name: w.open_sample(n))
+                sub.addSeparator()
+                # the APC user guide's complete DPL programs (seed 004 §7.1-7.6), for the simulated APC
+                w.dpl_samples_menu = sub.addMenu("DPL (APC User Guide)")
+                for name in _samples("*.dpl"):
+                    w.dpl_samples_menu.addAction(name, lambda *, n=name: w.open_sample(n))
                 w.samples_menu = sub
                 continue
             if slot == "recent":
