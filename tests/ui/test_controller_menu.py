@@ -80,7 +80,7 @@ def test_programs_save_start_delete(window, qtbot):
     qtbot.waitUntil(lambda: "[01] stored" in window.messages.toPlainText(), timeout=15000)
     dialog.table.selectRow(0)
     dialog.autostart(True)
-    assert dialog.table.item(0, 2).text() == "⦿" and dialog.table.item(1, 2).text() == ""
+    assert dialog.table.item(0, 2).text() == "⊙" and dialog.table.item(1, 2).text() == ""  # DG 2727
     window.bridge.link.call("power_on")  # DG 2707: the Autostart program starts at power on
     qtbot.waitUntil(lambda: window.messages.toPlainText().count("[01] stored") >= 2, timeout=15000)
     dialog.autostart(False)
