@@ -12,18 +12,13 @@ the instruction (pc, op) or field; ProgramImage.from_bytes adds the byte offset.
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from motiontool.aposs.commands import command_table
-from motiontool.aposs.image import (
-    MATH_FUNCTIONS,
-    OPERATOR_OF,
-    PSEUDO_ARRAYS,
-    SELECTOR_CODES,
-    BinOp,
-    ImageError,
-    Op,
-    ProgramImage,
-)
+from motiontool.aposs.opcodes import MATH_FUNCTIONS, OPERATOR_OF, PSEUDO_ARRAYS, SELECTOR_CODES, BinOp, ImageError, Op
+
+if TYPE_CHECKING:
+    from motiontool.aposs.image import ProgramImage
 
 L, D, S = "LONG", "DOUBLE", "text"
 MAX_VARIABLE_ELEMENTS = 1_000_000     # all variable arrays of a program together (decisions L23)
