@@ -156,3 +156,41 @@ def answering(qtbot, *replies: Reply, fallback: Reply | None = None, timeout: in
         answerer.timer.stop()
     if answerer.errors:
         raise answerer.errors[0]
+
+
+@contextlib.contextmanager
+def answering_inner(qtbot, kind: type, *replies: Reply, timeout: int = 5000):
+    """For a button clicked inside a reply (the outer dialog is waiting in that reply): answer only the next
+    dialogs of type `kind`, in order, and then stop. `answering` would go on polling after its replies, and
+    a processEvents() in the code that runs after them (a progress log) let it take the outer dialog for an
+    unexpected one and close it - a failure that came and went with the machine's load."""
+    pending = list(replies)
+    errors: list[BaseException] = []
+    timer = QTimer()
+    timer.setInterval(POLL_MS)
+
+    def poll() -> None:
+        dialog = QApplication.activeModalWidget()
+        if not pending or not isinstance(dialog, kind) or not dialog.isVisible() or dialog.property(REPLIES):
+            return
+        dialog.setProperty(REPLIES, 1)
+        reply = pending.pop(0)
+        if not pending:
+            timer.stop()
+        trace(f"   inner {type(dialog).__name__} {dialog.windowTitle()!r}")
+        try:
+            reply(dialog)
+        except BaseException as exc:  # noqa: BLE001 - reported when the block ends; the dialog is closed
+            errors.append(exc)
+            cancel_reply(dialog)
+
+    timer.timeout.connect(poll)
+    timer.start()
+    try:
+        yield
+        if pending:
+            qtbot.waitUntil(lambda: not pending, timeout=timeout)
+    finally:
+        timer.stop()
+    if errors:
+        raise errors[0]

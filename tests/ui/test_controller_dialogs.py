@@ -13,7 +13,7 @@ from motiontool.ui.controller_menu import ProgramsDialog
 from motiontool.ui.download_dialog import DownloadDialog, parse_ids
 from motiontool.ui.error_history import ErrorHistoryDialog
 from motiontool.ui.parameter_dialogs import NameDialog, ParametersDialog
-from tests.modal import answering, button_reply, file_reply, text_reply
+from tests.modal import answering, answering_inner, button_reply, file_reply, text_reply
 from tests.ui.test_user_defects import run_failing
 
 
@@ -47,6 +47,11 @@ def button(dialog, text: str) -> QPushButton:
     return next(b for b in dialog.findChildren(QPushButton) if b.text().replace("&", "") == text)
 
 
+def values_read(qtbot, dialog: ParametersDialog) -> None:
+    """The dialog appears at once and reads its values on a worker (issue 27 item 2): wait as a user waits."""
+    qtbot.waitUntil(lambda: dialog.waiting == 0 and dialog.ok.isEnabled(), timeout=10_000)
+
+
 def choose_group(qtbot, dialog: ParametersDialog, title: str) -> None:
     item = dialog.groups.findItems(title, Qt.MatchFlag.MatchExactly)[0]
     qtbot.mouseClick(dialog.groups.viewport(), Qt.MouseButton.LeftButton,
@@ -63,6 +68,7 @@ def test_axis_parameters_refuse_a_bad_kprop_with_the_reason_and_write_a_good_one
         assert isinstance(dialog, ParametersDialog)
         dialog.activateWindow()             # as the window manager does: typing goes to the dialog, focus moves
         qtbot.waitUntil(dialog.isActiveWindow, timeout=2000)
+        values_read(qtbot, dialog)
         seen["groups"] = [dialog.groups.item(i).text() for i in range(dialog.groups.count())]
         choose_group(qtbot, dialog, "Position Regulation")
         field = dialog.fields["32-60"]
@@ -93,6 +99,7 @@ def test_global_parameters_show_the_manuals_groups_and_cancel_writes_nothing(win
 
     def look(dialog):
         assert isinstance(dialog, ParametersDialog)
+        values_read(qtbot, dialog)
         labels = [w.text() for w in dialog.findChildren(type(dialog.message)) if w.isVisible()]
         seen["headings"] = [t for t in labels if t in ("Inputs and outputs", "Global", "CAN bus and RS-485")]
         field = next(f for f in dialog.fields.values() if isinstance(f.widget, QLineEdit))
@@ -268,7 +275,7 @@ def test_download_all_stores_program_0_on_each_controller_verifies_and_sets_auto
         assert dialog.file.text() == str(path) and dialog.name.text() == "LINE"
         retype(qtbot, dialog.controllers, "1-2")
         tick(qtbot, dialog.options["autostart"])
-        with answering(qtbot, confirm_deletion(qtbot, seen)):  # controller 2 has a stored program
+        with answering_inner(qtbot, QMessageBox, confirm_deletion(qtbot, seen)):  # controller 2 has a stored program
             click(qtbot, button(dialog, "Start"))
         seen["log"] = dialog.log.toPlainText()
         click(qtbot, button(dialog, "Close"))

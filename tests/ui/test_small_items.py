@@ -14,10 +14,11 @@ from PySide6.QtWidgets import (
     QInputDialog,
     QLineEdit,
     QMenu,
+    QMessageBox,
     QPushButton,
 )
 
-from tests.modal import answering
+from tests.modal import answering, answering_inner
 
 
 def click(qtbot, widget) -> None:
@@ -72,7 +73,7 @@ def test_the_autostart_mark_is_a_glyph_of_the_table_font(window, qtbot):
     marks = []
 
     def body(dialog):
-        with answering(qtbot, typed_name(qtbot, [])):
+        with answering_inner(qtbot, QInputDialog, typed_name(qtbot, [])):
             click(qtbot, button(dialog, "Save"))
         table = dialog.table
         rect = table.visualItemRect(table.item(0, 1))
@@ -94,10 +95,10 @@ def test_programs_save_as_suggests_the_programs_file_name(window, qtbot, tmp_pat
     suggested = []
 
     def body(dialog):
-        with answering(qtbot, typed_name(qtbot, suggested), typed_name(qtbot, suggested)):
+        with answering_inner(qtbot, QInputDialog, typed_name(qtbot, suggested), typed_name(qtbot, suggested)):
             click(qtbot, button(dialog, "Save as..."))   # the name, then the number (0)
         window.samples_menu.actions()[0].trigger()
-        with answering(qtbot, typed_name(qtbot, suggested)):
+        with answering_inner(qtbot, QInputDialog, typed_name(qtbot, suggested)):
             click(qtbot, button(dialog, "Save"))
 
     in_programs_dialog(qtbot, window, body)
@@ -138,7 +139,7 @@ def test_download_all_asks_before_it_deletes_the_stored_programs(window, qtbot, 
 
     def run(dialog):
         retype(qtbot, dialog.controllers, "1-2")
-        with answering(qtbot, confirm_deletion(qtbot, seen, delete=False)):
+        with answering_inner(qtbot, QMessageBox, confirm_deletion(qtbot, seen, delete=False)):
             click(qtbot, button(dialog, "Start"))
         seen["log"] = dialog.log.toPlainText()
         click(qtbot, button(dialog, "Close"))
