@@ -9,37 +9,19 @@ against its range (an end may be another parameter: 4-13 from 4-11) and refused 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from decimal import Decimal, InvalidOperation
 
-from PySide6.QtCore import Qt
-from PySide6.QtGui import QBrush, QColor, QFont
-from PySide6.QtWidgets import (
-    QAbstractItemView,
-    QComboBox,
-    QDialog,
-    QDialogButtonBox,
-    QHBoxLayout,
-    QHeaderView,
-    QLabel,
-    QListWidget,
-    QPushButton,
-    QStackedWidget,
-    QTableWidget,
-    QTableWidgetItem,
-    QVBoxLayout,
-)
+from PySide6.QtWidgets import QComboBox, QHBoxLayout, QLabel, QVBoxLayout
 
 from motiontool.cameditor.zbc_drive import write_settings
 from motiontool.kernel.fc300_table import CELSIUS, FC_PARAMETERS, RPM, FCParam
 from motiontool.ui.controller_links import controller_link, interface_controllers
-from motiontool.ui.link_jobs import LinkJobs
+from motiontool.ui.parameter_pages import ParameterPages
 
 # the FC 300 menus a motion program reads (issue 25 item 2); the LCP's group names
 GROUPS = (("1-** Load and Motor", 1), ("3-** Reference / Ramps", 3), ("4-** Limits / Warnings", 4),
           ("5-** Digital In/Out", 5), ("16-** Data Readouts", 16))
 COLUMNS = ("Par.", "Name", "Value", "Unit", "Conv. index", "Range")
-VALUE = 2
 # units as the LCP shows them; a selection has none. kW parameters cross in W/10 (conversion index 1), the LCP
 # shows kW with two decimals, so they are shown at 10^-2 (the power-of-ten the table's index and the unit imply)
 UNITS = {120: "kW", 122: "V", 123: "Hz", 124: "A", 125: "RPM", 302: "Unit", 303: "Unit",
@@ -48,7 +30,6 @@ UNITS = {120: "kW", 122: "V", 123: "Hz", 124: "A", 125: "RPM", 302: "Unit", 303:
          1613: "Hz", 1614: "A", 1616: "Nm", 1617: "RPM", 1622: "%", 1630: "V"}
 _SHOWN_EXPONENT = {120: -2, 1610: -2}
 _HEX = {1600, 1603}   # control and status word: bits, shown as the FC 300 Design Guide writes them
-CHANGED, REFUSED, READ_ONLY = QColor("#fff3b0"), QColor("#ffc8c8"), QColor("#ececec")
 
 
 def exponent(p: FCParam) -> int:
@@ -80,44 +61,22 @@ def parsed(p: FCParam, text: str, low: int, high: int) -> int:
     return int(raw)
 
 
-@dataclass
-class Row:
-    p: FCParam
-    item: QTableWidgetItem
-    current: int | None = None    # the drive's value as last read
-    pending: int | None = None    # a checked new value, not yet written
-    refused: str | None = None
-
-
-class DriveParametersDialog(QDialog):
+class DriveParametersDialog(ParameterPages):
     def __init__(self, w, parent=None) -> None:
         super().__init__(parent or w)
         self.w = w
         self.setWindowTitle("Drive Parameters (FC 300)")
-        self.jobs = LinkJobs(self)
-        self.rows: dict[int, Row] = {}
-        self._loading = False
         self.controller = QComboBox()
         for cid in interface_controllers(w):
             self.controller.addItem(f"Controller {cid}", cid)
         self.controller.setCurrentIndex(max(0, self.controller.findData(w.bridge.controller_id)))
         self._shown_controller = self.controller.currentData()
         self.controller.currentIndexChanged.connect(lambda _i: self._controller_changed())
-        self.groups, self.pages, self.tables = QListWidget(), QStackedWidget(), {}
         for title, menu in GROUPS:
-            self.groups.addItem(title)
-            self.tables[menu] = table = self._table([p for p in FC_PARAMETERS.values() if p.number // 100 == menu])
-            self.pages.addWidget(table)
-        self.groups.currentRowChanged.connect(self.pages.setCurrentIndex)
+            self.add_group(title, menu, COLUMNS, [(p.number, p) for p in FC_PARAMETERS.values()
+                                                  if p.number // 100 == menu], self._cells, self._tooltip)
         self.groups.setMaximumWidth(180)
-        self.refresh = QPushButton("Refresh")
         self.refresh.clicked.connect(self.read)
-        self.message = QLabel("")
-        self.message.setWordWrap(True)
-        buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Ok | QDialogButtonBox.StandardButton.Cancel)
-        buttons.accepted.connect(self.accept)
-        buttons.rejected.connect(self.reject)
-        self.ok = buttons.button(QDialogButtonBox.StandardButton.Ok)
         top = QHBoxLayout()
         top.addWidget(QLabel("Controller:"))
         top.addWidget(self.controller, 1)
@@ -129,38 +88,21 @@ class DriveParametersDialog(QDialog):
         layout.addLayout(top)
         layout.addLayout(middle, 1)
         layout.addWidget(self.message)
-        layout.addWidget(buttons)
+        layout.addWidget(self.buttons)
         self.resize(1000, 520)
         self.groups.setCurrentRow(0)
         self.read()
 
-    def _table(self, parameters: list[FCParam]) -> QTableWidget:
-        table = QTableWidget(len(parameters), len(COLUMNS))
-        table.setHorizontalHeaderLabels(COLUMNS)
-        table.verticalHeader().setVisible(False)
-        table.setSelectionBehavior(QAbstractItemView.SelectionBehavior.SelectItems)
-        table.setEditTriggers(QAbstractItemView.EditTrigger.DoubleClicked | QAbstractItemView.EditTrigger.EditKeyPressed
-                              | QAbstractItemView.EditTrigger.AnyKeyPressed)
-        for r, p in enumerate(parameters):
-            cells = (p.label, p.name, "", UNITS.get(p.number, ""), str(p.conversion), self._range(p))
-            for c, text in enumerate(cells):
-                item = QTableWidgetItem(text)
-                if c != VALUE or p.read_only:
-                    item.setFlags(item.flags() & ~Qt.ItemFlag.ItemIsEditable)
-                if p.read_only:
-                    item.setBackground(QBrush(READ_ONLY))
-                item.setData(Qt.ItemDataRole.UserRole, p.number)
-                item.setToolTip(f"{p.label} {p.name}\nsource: {p.source}"
-                                + ("\nindexed: index 0 is shown (the link reaches index 0)" if p.size else ""))
-                table.setItem(r, c, item)
-            self.rows[p.number] = Row(p, table.item(r, VALUE))
-        header = table.horizontalHeader()   # the columns follow the values read later; the name takes the rest
-        for c in range(len(COLUMNS)):
-            header.setSectionResizeMode(c, QHeaderView.ResizeMode.Stretch if c == 1
-                                        else QHeaderView.ResizeMode.ResizeToContents)
-        table.verticalHeader().setSectionResizeMode(QHeaderView.ResizeMode.ResizeToContents)
-        table.itemChanged.connect(self._edited)
-        return table
+    def _cells(self, p: FCParam) -> tuple[str, ...]:
+        return p.label, p.name, "", UNITS.get(p.number, ""), str(p.conversion), self._range(p)
+
+    @staticmethod
+    def _tooltip(p: FCParam) -> str:
+        return (f"{p.label} {p.name}\nsource: {p.source}"
+                + ("\nindexed: index 0 is shown (the link reaches index 0)" if p.size else ""))
+
+    def shown(self, p: FCParam, raw: int) -> str:
+        return shown(p, raw)
 
     def _range(self, p: FCParam) -> str:
         if p.number in _HEX:
@@ -182,29 +124,6 @@ class DriveParametersDialog(QDialog):
         self._busy(f"Controller {cid}: reading the drive's parameters …")
         self.jobs.run(lambda: {n: link.read_parameter(row.p.label) for n, row in self.rows.items()},
                       lambda result: self._loaded(cid, result))
-
-    def _loaded(self, cid: int, result) -> None:
-        self._busy(None)
-        if isinstance(result, Exception):
-            self.say(f"Controller {cid}: {result}", error=True)
-            return
-        self._loading = True
-        for number, raw in result.items():
-            row = self.rows[number]
-            row.current = raw
-            if row.pending == raw:
-                row.pending = None
-            if row.pending is None and row.refused is None:
-                row.item.setText(shown(row.p, raw))
-            self._mark(row)
-        self._loading = False
-        self._summary()
-
-    def pending(self) -> dict[str, int]:
-        return {row.p.label: row.pending for row in self.rows.values() if row.pending is not None}
-
-    def refused(self) -> list[str]:
-        return [row.refused for row in self.rows.values() if row.refused]
 
     def _write_then_read(self, cid: int, then_cid: int, done) -> None:
         """The changed values to controller `cid`, then every value of `then_cid` (the same or the next one)."""
@@ -262,56 +181,16 @@ class DriveParametersDialog(QDialog):
         self.controller.setCurrentIndex(self.controller.findData(cid))
         self.controller.blockSignals(False)
 
-    # --- editing and feedback ----------------------------------------------------------------------------------
-    def _edited(self, item: QTableWidgetItem) -> None:
-        if self._loading or item.column() != VALUE:
-            return
-        row = self.rows[item.data(Qt.ItemDataRole.UserRole)]
-        self._check(row)
+    # --- editing ----------------------------------------------------------------------------------------------
+    def parse(self, row) -> int:
+        p = row.p
+        return parsed(p, row.item.text(), self._bound(p.low_par, p.low) if p.low_par else p.low,
+                      self._bound(p.high_par, p.high) if p.high_par else p.high)
+
+    def recheck_others(self, row) -> None:
         for other in self.rows.values():   # a value typed against this one's bound is checked again (4-11, 4-13)
             if row.p.number in (other.p.low_par, other.p.high_par) and (other.refused or other.pending is not None):
                 self._check(other)
-        if row.refused:
-            self.say(f"Refused: {row.refused}", error=True)
-        else:
-            self._summary()
 
-    def _check(self, row: Row) -> None:
-        p = row.p
-        try:
-            raw = parsed(p, row.item.text(), self._bound(p.low_par, p.low) if p.low_par else p.low,
-                         self._bound(p.high_par, p.high) if p.high_par else p.high)
-        except ValueError as exc:
-            row.pending, row.refused = None, str(exc)
-        else:
-            row.refused = None
-            row.pending = None if raw == row.current else raw
-        self._mark(row)
-
-    def _mark(self, row: Row) -> None:
-        was, self._loading = self._loading, True   # a style change is an itemChanged too
-        if row.refused:
-            row.item.setBackground(QBrush(REFUSED))
-        elif row.pending is not None:
-            row.item.setBackground(QBrush(CHANGED))
-        else:
-            row.item.setBackground(QBrush(READ_ONLY) if row.p.read_only else QBrush())
-        font = QFont(row.item.font())
-        font.setBold(row.pending is not None)
-        row.item.setFont(font)
-        self._loading = was
-
-    def _summary(self) -> None:
-        changed = len(self.pending())
-        self.say(f"{changed} changed value(s): OK writes them" if changed else "")
-
-    def _busy(self, text: str | None) -> None:
-        for widget in (self.ok, self.refresh, self.controller):
-            widget.setEnabled(text is None)
-        if text is not None:
-            self.say(text)
-
-    def say(self, text: str, *, error: bool = False) -> None:
-        self.message.setText(text)
-        self.message.setStyleSheet("color: #a00000;" if error else "")
-
+    def busy_widgets(self) -> list:
+        return [self.ok, self.refresh, self.controller]
