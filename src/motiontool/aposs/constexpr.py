@@ -4,8 +4,6 @@
 from __future__ import annotations
 
 from motiontool.aposs import ast, semantics
-from motiontool.aposs.diagnostics import CompileError, Location
-from motiontool.aposs.lexer import EOF, NEWLINE, Token
 
 
 class NotConstant(Exception):
@@ -66,20 +64,3 @@ def fold_int(expr: ast.Expr) -> int | None:
     except (NotConstant, semantics.OperatorError):
         return None
     return v if isinstance(v, int) else None
-
-
-def evaluate_tokens(tokens: list[Token], loc: Location) -> int | float:
-    """Evaluate a #if condition (tokens after macro expansion)."""
-    from motiontool.aposs.parser import Parser
-
-    end = Token(NEWLINE, "\n", None, tokens[-1].loc)
-    parser = Parser(tokens + [end, Token(EOF, "", None, end.loc)])
-    expr = parser.expression()
-    if not parser.at_end_of_statement():
-        raise CompileError(f"unexpected '{parser.tok.text}' in the #if condition", parser.tok.loc)
-    try:
-        return fold(expr)
-    except NotConstant:
-        raise CompileError("#if needs a constant integer expression", loc) from None
-    except semantics.OperatorError as exc:
-        raise CompileError(f"#if condition: {exc}", loc) from None

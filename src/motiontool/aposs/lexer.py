@@ -13,6 +13,7 @@ from motiontool.aposs.diagnostics import CompileError, Diagnostic, Location
 
 IDENT, INT, FLOAT, STRING, OP, NEWLINE, DIRECTIVE, EOF, TERMINAL = (
     "IDENT", "INT", "FLOAT", "STRING", "OP", "NEWLINE", "DIRECTIVE", "EOF", "TERMINAL")
+PRAGMA = "PRAGMA"  # made by the preprocessor from #pragma for the parser: value = "IMPLICIT" | "NOIMPLICIT"
 
 
 @dataclass(slots=True)

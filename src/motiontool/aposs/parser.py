@@ -7,13 +7,12 @@ SUBPROG name … RETURN blocks.
 
 from __future__ import annotations
 
-from motiontool.aposs import ast
+from motiontool.aposs import ast, constexpr, semantics
 from motiontool.aposs.commands import CommandTable, command_table
 from motiontool.aposs.constexpr import fold_int
-from motiontool.aposs.diagnostics import Cancelled, CompileError
+from motiontool.aposs.diagnostics import Cancelled, CompileError, Location
 from motiontool.aposs.exprparse import ExpressionParser, describe
-from motiontool.aposs.lexer import EOF, IDENT, NEWLINE, Token
-from motiontool.aposs.preprocess import PRAGMA
+from motiontool.aposs.lexer import EOF, IDENT, NEWLINE, PRAGMA, Token
 from motiontool.aposs.shadow import shadowed_commands, subprogram_name_warning
 
 _POSITION_KINDS = ("APOS", "IPOS", "MAPOS", "MCPOS", "MIPOS")
@@ -548,3 +547,18 @@ def parse(tokens: list[Token], commands: CommandTable | None = None, parameter_l
     finally:
         if warnings is not None:
             warnings.extend(parser.warnings)
+
+
+def evaluate_tokens(tokens: list[Token], loc: Location) -> int | float:
+    """Evaluate a #if condition (tokens after macro expansion)."""
+    end = Token(NEWLINE, "\n", None, tokens[-1].loc)
+    parser = Parser(tokens + [end, Token(EOF, "", None, end.loc)])
+    expr = parser.expression()
+    if not parser.at_end_of_statement():
+        raise CompileError(f"unexpected '{parser.tok.text}' in the #if condition", parser.tok.loc)
+    try:
+        return constexpr.fold(expr)
+    except constexpr.NotConstant:
+        raise CompileError("#if needs a constant integer expression", loc) from None
+    except semantics.OperatorError as exc:
+        raise CompileError(f"#if condition: {exc}", loc) from None

@@ -11,10 +11,10 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from motiontool.aposs.diagnostics import Cancelled, CompileError, Diagnostic, Location
-from motiontool.aposs.lexer import DIRECTIVE, EOF, IDENT, INT, NEWLINE, OP, STRING, Token, tokenize
+from motiontool.aposs.lexer import DIRECTIVE, EOF, IDENT, INT, NEWLINE, OP, PRAGMA, STRING, Token, tokenize
+from motiontool.aposs.parser import evaluate_tokens
 from motiontool.fileio import MiB, read_bytes
 
-PRAGMA = "PRAGMA"  # token kind handed to the parser: value = "IMPLICIT" | "NOIMPLICIT"
 MAX_INCLUDE_DEPTH = 32
 # Macro expansion is bounded, so a small file cannot stall or exhaust the compiler (20 doubling #defines are 2^20
 # tokens) - and the IDE compiles after every edit (decisions L22).
@@ -336,7 +336,6 @@ class Preprocessor:
         # Names left after expansion count as 0, as in C.
         toks = [replace(t, kind=INT, text="0", value=0)
                 if t.kind == IDENT and t.value not in ("AND", "OR", "NOT", "MOD", "RND", "EXP") else t for t in toks]
-        from motiontool.aposs.constexpr import evaluate_tokens
 
         try:
             return evaluate_tokens(toks, tok.loc) != 0
