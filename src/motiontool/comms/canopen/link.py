@@ -16,12 +16,15 @@
 
 Options: ``heartbeat=MS`` (producer time to set; default: leave the node's), ``consumer=MS`` (default 1000 or five
 producer times),
-``timeout=S`` (SDO answer timeout, default 1), ``bitrate=BIT/S``, ``eds=PATH`` (default the shipped EDS).
+``timeout=S`` (SDO answer timeout, default 1), ``bitrate=BIT/S``, ``eds=PATH`` (default the shipped EDS),
+``sdo=1|2`` (the SDO channel: 2 is the node's second SDO server 0x1201, for a second master such as the IDE beside
+the command line, decision N52).
 """
 
 from __future__ import annotations
 
 import contextlib
+import logging
 import struct
 import threading
 import time
@@ -39,6 +42,10 @@ from motiontool.comms.protocol import ConnectionLost, LinkError, LinkEvent, Requ
 from motiontool.comms.remote import RemoteLink
 from motiontool.paramdb import ParameterError, database
 
+# python-canopen logs a client-side abort (e.g. "Transfer aborted by client with code 0x05040001") with no handler
+# configured, so Python printed it raw on stderr; the link says what went wrong in its own error
+logging.getLogger("canopen").addHandler(logging.NullHandler())
+
 PARAMETER_BASE = 0x2000
 MESSAGE_TIMEOUT_S = 10.0   # the answer to a link message (it is carried out before the answer)
 CONSUMER_MS = 1000   # default heartbeat consumer time: a loaded machine can hold a drive up for a few hundred ms
@@ -46,7 +53,11 @@ GUARD_S = 0.1        # node guarding of a node without a heartbeat, while someth
 NMT_NAMES = {4: "STOPPED", 5: "OPERATIONAL", 127: "PRE-OPERATIONAL"}
 NMT_BACK = {4: 0x02, 127: 0x80}   # the NMT command that returns a node to a state it was in
 ABORT_ERRORS = {0x06010002: 112, 0x06020000: 112, 0x06090030: 183, 0x06090031: 183, 0x06090032: 183}
-OPTIONS = {"heartbeat", "consumer", "timeout", "bitrate", "eds", "client"}
+OPTIONS = {"heartbeat", "consumer", "timeout", "bitrate", "eds", "client", "sdo"}
+SDO_COB_IDS = {1: (0x600, 0x580), 2: (0x100, 0x680)}   # client → server, server → client (DG 7323-7325)
+SDO2_PROBE_S = 0.3      # how long a request on SDO 2 waits before the link enables it (a node answers in ms)
+COLLISION_S = 2.0       # another master's request this recent explains a transfer that went wrong
+ENABLE_TRIES, QUIET_S = 3, 0.05   # enabling SDO 2 through channel 1 waits for a pause of the other master there
 
 
 def open_bus(interface: str, channel: str, bitrate: int | None = None, client: str = "fast") -> can.BusABC:
@@ -67,9 +78,13 @@ class CanopenLink(RemoteLink):
 
     def __init__(self, interface: str, channel: str, node: int = 1, *, heartbeat_ms: int | None = None,
                  consumer_ms: int | None = None, sdo_timeout_s: float = 1.0, bitrate: int | None = None,
-                 eds_path: str | None = None, client: str = "fast"):
+                 eds_path: str | None = None, client: str = "fast", sdo_channel: int = 1):
         if not 1 <= node <= 127:
             raise LinkError(f"CANopen node id {node}: 1..127")
+        if sdo_channel not in SDO_COB_IDS:
+            raise LinkError(f"CANopen SDO channel {sdo_channel}: 1 or 2")
+        self.sdo_channel = sdo_channel
+        self._foreign_request: dict[int, float] = {}   # COB-ID → when another master's frame was last seen there
         self.interface, self.channel, self.node_id = interface, channel, node
         self.bitrate, self.client = bitrate, client
         self.heartbeat_ms = heartbeat_ms
@@ -90,6 +105,8 @@ class CanopenLink(RemoteLink):
         self._stream_request: tuple[list[str], int] | None = None
         super().__init__(self._exchange, f"CANopen node {node} on {interface}:{channel}")
         self._connect()
+        if sdo_channel == 2:
+            self._enable_sdo2()
         self.stream = PdoStream(self.remote.sdo, self.network, node, self.od, self._publish)
         self._configure()
         self._watch = threading.Thread(target=self._watchdog, name="canopen-heartbeat", daemon=True)
@@ -104,12 +121,82 @@ class CanopenLink(RemoteLink):
         self.network = canopen.Network(bus)
         self.network.notifier = can.Notifier(bus, self.network.listeners, 0.5)
         self.remote = canopen.RemoteNode(self.node_id, self.od)
+        if self.sdo_channel != 1:
+            rx, tx = SDO_COB_IDS[self.sdo_channel]
+            self.remote.sdo = self.remote.add_sdo(rx + self.node_id, tx + self.node_id)
         self.remote.sdo.RESPONSE_TIMEOUT = self.sdo_timeout_s
         self.network.add_node(self.remote)
+        for client in self.remote.sdo_channels:      # python-canopen gives its network to `sdo` only
+            client.network = self.network
         self.remote.nmt.add_heartbeat_callback(self._on_heartbeat)
+        # our adapter does not hand us our own frames: a request on our channel is another master's
+        self.network.subscribe(self.remote.sdo.rx_cobid, self._on_foreign_request)
         if hasattr(self, "stream"):      # a new transport: the link sets the node up again when it answers
             self.stream.sdo, self.stream.network = self.remote.sdo, self.network
             self._rebooted = True
+
+    def _on_foreign_request(self, can_id, data, timestamp) -> None:
+        self._foreign_request[can_id] = time.monotonic()
+
+    def _collision(self, channel: int | None = None) -> LinkError | None:
+        """Two masters on one SDO channel take each other's answers (CiA 301 allows one client per server): said in
+        words when another master's request came while ours went wrong."""
+        channel = channel or self.sdo_channel
+        if time.monotonic() - self._foreign_request.get(SDO_COB_IDS[channel][0] + self.node_id, 0) > COLLISION_S:
+            return None
+        return LinkError(f"another master uses SDO channel {channel} of CANopen node {self.node_id}; "
+                         f"use ,sdo={2 if channel == 1 else 1} on one of them")
+
+    def _enable_sdo2(self) -> None:
+        """The second SDO server answers once 0x1201 is valid (DG 7327-7335): ask it; if it is silent, clear
+        NOT_VALID through the first channel, between the other master's transfers there, and say so. It stays
+        valid on close: another master may be using it (decision N52)."""
+        probe = self.remote.sdo
+        probe.RESPONSE_TIMEOUT = min(self.sdo_timeout_s, SDO2_PROBE_S)
+        try:
+            probe.upload(0x1201, 1)
+            return
+        except (SdoCommunicationError, SdoAbortedError, can.CanError, OSError):
+            pass
+        finally:
+            probe.RESPONSE_TIMEOUT = self.sdo_timeout_s
+        first = self.remote.sdo_channels[0]
+        first.RESPONSE_TIMEOUT = self.sdo_timeout_s
+        self.network.subscribe(first.rx_cobid, self._on_foreign_request)
+        self.network.subscribe(first.tx_cobid, self._on_foreign_request)   # answers to the other master too
+        try:
+            for attempt in range(ENABLE_TRIES):
+                self._quiet(first.rx_cobid, first.tx_cobid)
+                try:
+                    for sub, base in ((1, 0x100), (2, 0x680)):
+                        first.download(0x1201, sub, (base + self.node_id).to_bytes(4, "little"))
+                    break
+                except (SdoCommunicationError, SdoAbortedError) as exc:
+                    busy = self._collision(1)
+                    if busy is None:
+                        if isinstance(exc, SdoAbortedError):
+                            raise LinkError(f"CANopen node {self.node_id} refused to enable its second SDO server "
+                                            f"(0x1201): {exc}") from None
+                        raise ConnectionLost(f"CANopen node {self.node_id} does not answer: {exc}") from None
+                    if attempt == ENABLE_TRIES - 1:
+                        raise LinkError(f"{busy}: its second SDO server (0x1201) could not be enabled between the "
+                                        "other master's transfers; enable it there or in the program (DG 7339)"
+                                        ) from None
+        finally:
+            self.network.unsubscribe(first.tx_cobid, self._on_foreign_request)
+            self.network.unsubscribe(first.rx_cobid, self._on_foreign_request)
+        self._publish(LinkEvent("message", 0, f"CANopen node {self.node_id}: second SDO server enabled (0x1201 "
+                                              f"= 0x{0x100 + self.node_id:X} / 0x{0x680 + self.node_id:X})"))
+
+    def _quiet(self, *cob_ids: int) -> None:
+        """Wait (up to a few seconds) until no frame came on these COB-IDs for QUIET_S: the other master's transfer
+        is over."""
+        deadline = time.monotonic() + 3.0
+        while time.monotonic() < deadline:
+            last = max(self._foreign_request.get(c, 0) for c in cob_ids)
+            if time.monotonic() - last >= QUIET_S:
+                return
+            time.sleep(QUIET_S / 4)
 
     def _disconnect(self) -> None:
         with contextlib.suppress(Exception):
@@ -167,10 +254,11 @@ class CanopenLink(RemoteLink):
             try:
                 return action(self.remote.sdo)
             except SdoCommunicationError as exc:
-                raise ConnectionLost(f"CANopen node {self.node_id} does not answer: {exc}") from None
-            except SdoAbortedError as exc:
-                raise LinkError(f"CANopen node {self.node_id} refused: {exc}", ABORT_ERRORS.get(exc.code, 0)) \
+                raise self._collision() or ConnectionLost(f"CANopen node {self.node_id} does not answer: {exc}") \
                     from None
+            except SdoAbortedError as exc:
+                raise self._collision() or LinkError(f"CANopen node {self.node_id} refused: {exc}",
+                                                     ABORT_ERRORS.get(exc.code, 0)) from None
             except (can.CanError, OSError) as exc:
                 raise ConnectionLost(f"CAN interface {self.interface}:{self.channel}: {exc}") from None
 
@@ -196,7 +284,7 @@ class CanopenLink(RemoteLink):
                         view = view[raw.write(view[:7]) or 7:]
                 return
             except (SdoAbortedError, SdoCommunicationError) as exc:
-                if not _no_blocks(exc):
+                if not _no_blocks(exc) or self._collision():   # another master's answer is no refusal
                     raise
                 self._blocks = False
         sdo.download(index, 0, data)
@@ -207,7 +295,7 @@ class CanopenLink(RemoteLink):
                 with sdo.open(index, 0, "rb", buffering=0, block_transfer=True) as raw:
                     return b"".join(iter(lambda: raw.read(7), b""))
             except (SdoAbortedError, SdoCommunicationError) as exc:
-                if not _no_blocks(exc):
+                if not _no_blocks(exc) or self._collision():   # another master's answer is no refusal
                     raise
                 self._blocks = False
         return sdo.upload(index, 0)
@@ -384,7 +472,7 @@ def open_canopen(spec: LinkSpec) -> CanopenLink:
                        consumer_ms=spec.option("consumer", None, int, 0, 65535),
                        sdo_timeout_s=spec.option("timeout", 1.0, float, 0.001, 60),
                        bitrate=spec.option("bitrate", None, int, 10_000, 1_000_000), eds_path=spec.option("eds", None),
-                       client=spec.option("client", "fast"))
+                       client=spec.option("client", "fast"), sdo_channel=spec.option("sdo", 1, int, 1, 2))
 
 
 def scan_spec(spec: LinkSpec, ids) -> list[int]:

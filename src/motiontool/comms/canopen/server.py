@@ -48,7 +48,7 @@ class CanopenDrive:
         simulation = drive.simulation
         text = eds.eds_text()
         od = canopen.import_od(str(eds.eds_path()))
-        wanted = {0, *(0x600 + n for n in drive.nodes)}          # NMT and SDO requests: what LocalNodes serve
+        wanted = {0, *(0x600 + n for n in drive.nodes), *(0x100 + n for n in drive.nodes)}  # NMT, SDO 1 and 2
         self.network = canopen.Network(open_local_bus(interface, channel, wanted))
         self.network.notifier = can.Notifier(self.network.bus, self.network.listeners, 0.5)
         self.nodes: dict[int, ControllerNode] = {}
@@ -65,11 +65,11 @@ class CanopenDrive:
         self._thread = threading.Thread(target=self._in, name="canopen-bridge", daemon=True)
         self._thread.start()
 
-    def forget_transfers(self, nodes) -> None:
-        """The master that talked to these nodes went away in the middle of a block transfer, maybe."""
-        for n in nodes:
-            if n in self.nodes:
-                self.nodes[n].sdo.forget_transfer()
+    def forget_transfers(self, cob_ids) -> None:
+        """The master that sent SDO requests on these COB-IDs went away in the middle of a block transfer, maybe."""
+        for cob_id in cob_ids:
+            if (node := self.nodes.get(cob_id & 0x7F)) is not None:
+                node.forget_transfer(cob_id)
 
     def _out(self, frame: CanFrame) -> None:
         """Called in the tick (under the drive's lock): the bus only queues the message."""

@@ -189,8 +189,8 @@ class SlcanServer:
         self._clients_lock = threading.Lock()
         self.frames_in = self.frames_out = 0
         self.refused = 0
-        self.on_disconnect: list = []          # called with the node ids whose SDO client went away
-        self._sdo_clients: dict[int, _Client] = {}   # node id → the client that sent its last SDO request
+        self.on_disconnect: list = []          # called with the SDO request COB-IDs whose client went away
+        self._sdo_clients: dict[int, _Client] = {}   # COB-ID → the client that sent its last SDO request
         self._listener = socket.create_server((host, port), family=socket.AF_INET6 if ":" in host else socket.AF_INET)
         self.host, self.port = self._listener.getsockname()[:2]
         self._threads = [threading.Thread(target=self._accept, name="slcan-accept", daemon=True),
@@ -227,12 +227,12 @@ class SlcanServer:
         with self._clients_lock:
             if client in self.clients:
                 self.clients.remove(client)
-            nodes = [n for n, c in self._sdo_clients.items() if c is client]
-            for n in nodes:
+            cob_ids = [n for n, c in self._sdo_clients.items() if c is client]
+            for n in cob_ids:
                 del self._sdo_clients[n]
-        if nodes:
+        if cob_ids:
             for callback in self.on_disconnect:
-                callback(nodes)
+                callback(cob_ids)
 
     def _receivers(self, sender: _Client | None) -> list[_Client]:
         with self._clients_lock:
@@ -241,8 +241,8 @@ class SlcanServer:
     def transmit(self, msg: can.Message, sender: _Client) -> None:
         """A frame from a client: onto the bus and to the other clients."""
         self.frames_in += 1
-        if 0x601 <= msg.arbitration_id <= 0x67F:
-            self._sdo_clients[msg.arbitration_id - 0x600] = sender
+        if 0x601 <= msg.arbitration_id <= 0x67F or 0x101 <= msg.arbitration_id <= 0x17F:   # SDO 1, SDO 2 requests
+            self._sdo_clients[msg.arbitration_id] = sender
         self.bus.send(msg)
         for client in self._receivers(sender):
             client.write(frame_text(msg, client.stamps))
