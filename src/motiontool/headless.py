@@ -9,7 +9,7 @@ import os
 import re
 import sys
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from pathlib import Path
 from typing import TextIO
 
@@ -17,39 +17,29 @@ from motiontool import cliargs
 from motiontool.aposs.driver import compile_source
 from motiontool.cameditor.transfer import download_config
 from motiontool.cameditor.zbc import ConfigError, read_config
-from motiontool.cliargs import BadNumber, node_id, parse_input, parse_setting, shown
+from motiontool.cliargs import BadNumber, parse_input, parse_setting, shown
 from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.eventorder import TimeOrder
 from motiontool.comms.links import LinkSpecError, parse_link_spec
 from motiontool.comms.protocol import LinkError, LinkEvent
 from motiontool.dpl.driver import is_dpl
-from motiontool.fileio import AtomicFile, atomic_write_text, check_writable, write_error
+from motiontool.fileio import atomic_write_text, check_writable, write_error
+from motiontool.headless_dpl import run_dpl
+from motiontool.runsetup import (  # noqa: F401 - RunOptions and the exit codes are the run's interface
+    EXIT_COMPILE,
+    EXIT_CONTROLLER,
+    EXIT_OK,
+    EXIT_REFUSED,
+    MAX_SECONDS,
+    RunOptions,
+    TraceWriter,
+    _node_programs,
+    _OutputError,
+    _per_node,
+    _Usage,
+)
 
-# 1: nothing ran - a compile error, a file or a command line that was refused (decisions R10); 2: the controller
-# stopped the program with an error.
-EXIT_OK, EXIT_COMPILE, EXIT_CONTROLLER = 0, 1, 2
-EXIT_REFUSED = EXIT_COMPILE
 _NODE_PREFIX = re.compile(r"^\s*-?[0-9]+\s*:")
-
-
-@dataclass
-class RunOptions:
-    seconds: float = 60.0
-    settings: list[str] = field(default_factory=list)       # NAME=VALUE or 32-60=VALUE
-    inputs: list[str] = field(default_factory=list)         # N=V@T
-    include_dirs: list[Path] = field(default_factory=list)
-    trace: Path | None = None
-    signals: list[str] = field(default_factory=lambda: ["APOS", "CPOS", "TRACKERR"])
-    trace_interval_ms: int = 1
-    record: Path | None = None
-    realtime: bool = False
-    config: Path | None = None                              # .zbc/.cnf loaded before the start
-    nodes: list[str] = field(default_factory=list)          # ID:PROGRAM.m: several controllers (run_nodes)
-    master_node: int | None = None                          # whose PULSVEL is everyone's master (default lowest)
-    link: str | None = None                                 # --link SPEC (comms/links.py); None = the simulator
-    timeout: float = 30.0                                   # --timeout: how long a lost link may pause the run
-    ctsync_wires: int = 2                                   # .dpl with --node: a 2- or 4-wire CTSync line
-
 
 
 class PrintOutput:
@@ -136,9 +126,6 @@ def check_options(path: Path | None, options: RunOptions, err) -> bool:
     return not problems and _outputs_writable(path, options, err)
 
 
-MAX_SECONDS = cliargs.MAX_RUN_SECONDS  # ten days of virtual time
-
-
 def _outputs_writable(path: Path | None, options: RunOptions, err) -> bool:
     targets = [options.trace] if options.trace else []
     if options.record:
@@ -204,61 +191,6 @@ def prepare_link(link, config, settings: list[str], inputs: list[str], options, 
     return True
 
 
-class _OutputError(Exception):
-    """An output file of the run could not be written: ``cannot write PATH: reason`` (exit 1)."""
-
-
-class TraceWriter:
-    """--trace: rows go to the file while the program runs (an hour of 1 ms rows is some 2 GB in memory); the file
-    appears, complete, only at the end (fileio.AtomicFile). With several controllers a row is written once every
-    node has sent its samples for that time."""
-
-    def __init__(self, path: Path, nodes: list[int], signals: list[str]):
-        self.path = path
-        self.nodes = nodes
-        self.error: str | None = None  # the first failed write (the run stops; events cannot raise)
-        self.file = AtomicFile(path)
-        self.pending: dict[int, dict[int, list]] = {n: {} for n in nodes}
-        self.latest = {n: -1 for n in nodes}
-        self.empty = [""] * len(signals)
-        header = ["time_ms", *signals] if len(nodes) == 1 else \
-            ["time_ms", *(f"{n}:{s}" for n in nodes for s in signals)]
-        self.file.write(",".join(header) + "\n")
-
-    def add(self, node: int, data: dict) -> None:
-        rows = self.pending[node]
-        for t, values in zip(data["time_ms"], data["values"], strict=True):
-            rows[t] = values
-            self.latest[node] = max(self.latest[node], t)
-        self.flush(min(self.latest.values()))
-
-    def flush(self, until: float = math.inf) -> None:
-        times = sorted({t for n in self.nodes for t in self.pending[n] if t <= until})
-        lines = []
-        for t in times:
-            values = [v for n in self.nodes for v in self.pending[n].pop(t, self.empty)]
-            lines.append(",".join(str(v) for v in [t, *values]) + "\n")
-        if self.error is None:
-            try:
-                self.file.write("".join(lines))
-            except OSError as exc:  # a full disk, a share gone: reported by the run, which then stops
-                self.error = write_error(self.path, exc)
-
-    def commit(self) -> None:
-        """Put the complete file in place; raises _OutputError when that (or an earlier write) failed."""
-        self.flush()
-        if self.error is None:
-            try:
-                self.file.commit()
-                return
-            except OSError as exc:
-                self.error = write_error(self.path, exc)
-        raise _OutputError(self.error)
-
-    def discard(self) -> None:
-        self.file.discard()
-
-
 def is_dpl_run(path: Path | None, options: RunOptions) -> bool:
     """DPL programs on simulated APCs (headless_dpl): FILE.dpl or any --node ID:OTHER.dpl."""
     return is_dpl(path) or any(is_dpl(spec.partition(":")[2].strip()) for spec in options.nodes)
@@ -269,8 +201,6 @@ def run_program(path: Path | None, options: RunOptions, out: TextIO | None = Non
     if not check_options(path, options, err):
         return EXIT_REFUSED
     if is_dpl_run(path, options):
-        from motiontool.headless_dpl import run_dpl  # here: it uses this module's helpers
-
         return run_dpl(path, options, err)  # DPL programs run on the simulated APC (a CTSync line for several)
     if options.nodes:  # a multi-axis project: several controllers on one master signal
         return run_nodes(path, options, out, err)
@@ -408,49 +338,6 @@ def _write_output(path: Path, header: list[str], rows: list[list]) -> None:
 
 
 # --- several controllers (--node): a multi-axis project on one master signal (comms/bus.py) -------------------
-_NODE = re.compile(r"^\s*([^:]*?)\s*:(.+)$")
-_FOR_NODE = re.compile(r"^\s*(-?[0-9]{1,9})\s*:(.*)$")  # ASCII digits: \d would take "٢" as node 2
-
-
-class _Usage(Exception):
-    """A bad command line or file: the message goes to stderr, exit 1."""
-
-
-def _node_programs(path: Path | None, specs: list[str]) -> dict[int, Path]:
-    """FILE.m on node 1 (if given) and every --node ID:PROGRAM.m, in the order given."""
-    programs: list[tuple[int, Path]] = [(1, path)] if path is not None else []
-    for spec in specs:
-        m = _NODE.match(spec)
-        if not m:
-            raise _Usage(f"motiontool run: --node needs ID:PROGRAM.m, got '{shown(spec)}'")
-        try:  # the bus says the same; here before anything is compiled
-            programs.append((node_id(m.group(1)), Path(m.group(2).strip())))
-        except BadNumber as exc:
-            raise _Usage(f"motiontool run: {exc}") from None
-    nodes = [n for n, _ in programs]
-    for n in nodes:
-        if nodes.count(n) > 1:
-            raise _Usage(f"motiontool run: node id {n} is given twice"
-                         + (" (FILE.m runs on node 1)" if path is not None and n == 1 else ""))
-    return dict(programs)
-
-
-def _per_node(values: list[str], nodes: list[int], option: str) -> dict[int, list[str]]:
-    """`[ID:]VALUE` options: with ID for that node, without for every node."""
-    result: dict[int, list[str]] = {n: [] for n in nodes}
-    for value in values:
-        m = _FOR_NODE.match(value)
-        if m:
-            n = int(m.group(1))
-            if n not in result:
-                raise _Usage(f"motiontool run: {option} {value}: node {n} runs no program (nodes {nodes})")
-            result[n].append(m.group(2))
-        else:
-            for n in nodes:
-                result[n].append(value)
-    return result
-
-
 def run_nodes(path: Path | None, options: RunOptions, out: TextIO | None = None, err: TextIO | None = None) -> int:
     """Several simulated controllers in lockstep (comms/bus.py, kernel/simulation.py): FILE.m on node 1 and every
     --node ID:PROGRAM.m; the virtual master (PULSVEL) of --master-node (default the lowest id) is the master input

@@ -11,7 +11,7 @@ from motiontool.cliargs import PARAMETER_VALUE, BadNumber, shown, whole
 from motiontool.comms.protocol import LinkError, LinkEvent
 from motiontool.dpl.driver import check_source, is_dpl
 from motiontool.fileio import write_error
-from motiontool.headless import (
+from motiontool.runsetup import (
     EXIT_COMPILE,
     EXIT_CONTROLLER,
     EXIT_OK,
