@@ -113,3 +113,39 @@ def test_params_takes_the_sdo_option_on_the_command_line():
                               "--get", "KPROP"], capture_output=True, text=True, timeout=120)
     assert (good.returncode, good.stdout, good.stderr) == (0, "32-60 KPROP 30\n", "")
     assert bad.returncode == 1 and len(bad.stderr.splitlines()) == 1 and "option sdo" in bad.stderr, bad.stderr
+
+
+def test_a_link_on_sdo_channel_2_comes_back_when_its_drive_restarts():
+    """A restarted node has SDO 2 NOT_VALID again (DG 7329-7331): the link on `,sdo=2` enables it again when the
+    node is back, and reads through it."""
+    import socket
+
+    from tests.comms.drive_process import DriveProcess
+
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    listen = f"canopen:slcan:socket://127.0.0.1:{port}"
+    first = DriveProcess("--node", "1", listen=listen)
+    link = open_link(first.url + "#1,sdo=2,timeout=0.3")
+    link.subscribe(lambda event: None)      # a watching master (the IDE): the link guards the node
+    second = None
+    try:
+        assert link.read_parameter("KPROP") == 30
+        first.proc.kill()
+        first.proc.wait(10)
+        second = DriveProcess("--node", "1", listen=listen)
+        assert second.url
+        deadline = time.monotonic() + 15
+        while True:
+            try:
+                assert link.read_parameter("KPROP") == 30
+                break
+            except LinkError:
+                assert time.monotonic() < deadline, "the link did not come back on SDO 2 within 15 s"
+                time.sleep(0.2)
+        assert link.alive
+    finally:
+        link.close()
+        if second is not None:
+            second.stop()

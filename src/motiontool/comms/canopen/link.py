@@ -415,6 +415,8 @@ class CanopenLink(RemoteLink):
         lost, self._lost = self._lost, False      # the set-up below talks to the node
         try:
             if rebooted:
+                if self.sdo_channel == 2:       # a restarted node has SDO 2 NOT_VALID again
+                    self._enable_sdo2()
                 self._configure()
                 if self._stream_request is not None:
                     self._stream(*self._stream_request)
