@@ -329,3 +329,19 @@ def test_file_sample_offers_the_apc_guides_dpl_programs(window, qtbot):
         qtbot.keyClick(editor, Qt.Key.Key_F4)
         qtbot.waitUntil(lambda: "Syntax check" in window.messages.toPlainText(), timeout=10000)
         assert "Syntax check: no errors" in window.messages.toPlainText(), window.messages.toPlainText()
+
+
+def test_new_tabs_are_numbered_so_two_untitled_programs_can_be_told_apart(window, qtbot):
+    """Issue 23 item 11: "two tabs both 'Untitled'". File ▸ New gives Untitled, Untitled 2, Untitled 3; a number
+    closed is given again."""
+    while window.tabs.count():
+        window.actions_by_text["Close"].trigger()
+    new = window.actions_by_text["New"]
+    for _ in range(3):
+        new.trigger()
+    assert [window.tabs.tabText(i) for i in range(window.tabs.count())] == ["Untitled", "Untitled 2", "Untitled 3"]
+    window.tabs.setCurrentIndex(1)
+    window.actions_by_text["Close"].trigger()
+    new.trigger()
+    assert [window.tabs.tabText(i) for i in range(window.tabs.count())] == ["Untitled", "Untitled 3", "Untitled 2"]
+    assert window.windowTitle().startswith("motiontool — Untitled 2")

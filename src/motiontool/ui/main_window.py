@@ -135,7 +135,14 @@ class MainWindow(QMainWindow):
         return [self.tabs.widget(i) for i in range(self.tabs.count())]
 
     def new_file(self) -> CodeEditor:
-        return self._add_editor("Untitled", "", None)
+        """A new tab "Untitled", then "Untitled 2", "Untitled 3" while the others are open (two tabs both called
+        Untitled could not be told apart, issue 23)."""
+        taken = {e.property("untitled") for e in self.editors() if not e.property("path")}
+        name = next(f"Untitled {n}" if n > 1 else "Untitled" for n in range(1, len(taken) + 2)
+                    if (f"Untitled {n}" if n > 1 else "Untitled") not in taken)
+        editor = self._add_editor(name, "", None)
+        editor.setProperty("untitled", name)
+        return editor
 
     def open_file(self, path: Path) -> CodeEditor:
         """Open a program in a new tab; a program already open is brought to the front (ide-spec 1.1)."""
@@ -225,7 +232,7 @@ class MainWindow(QMainWindow):
     def _update_tab_title(self, editor: CodeEditor) -> None:
         index = self.tabs.indexOf(editor)
         path = editor.property("path")
-        name = Path(path).name if path else (editor.property("sample") or "Untitled")
+        name = Path(path).name if path else (editor.property("sample") or editor.property("untitled") or "Untitled")
         self.tabs.setTabText(index, name + (" *" if editor.document().isModified() else ""))
         self._update_title()
 
