@@ -6,8 +6,12 @@ an APOSS window (offscreen) connected to its controller 1, which runs a program 
 - ide_gui_stall_p99_9600_baud: the 99th percentile of those gaps (ms),
 - ide_status_answers_9600_baud: status answers that reached the window per second (the status is asked every
   `status_interval_s`, 2.6 s at 9600 baud),
-- ide_printed_lines_9600_baud: PRINT lines of the program that reached the Communication pane per second (events).
-`--baud` sets another baud rate (the names follow it)."""
+- ide_printed_lines_9600_baud: PRINT lines of the program that reached the Communication pane per second (events),
+- ide_axis_dialog_longest_stall: then, the program still running, Controller ▸ Parameters ▸ Axis is opened and left
+  open until every value is shown; the longest gap of the 10 ms timer from just before the menu entry until then
+  (ms; goal <= 50, issue 27 item 2: the ~115 reads stood the window still 6.6 s when they ran on the GUI thread),
+- ide_axis_dialog_values_shown: seconds from the menu entry until every value of the dialog is shown.
+`--baud` sets another baud rate (the names of the first four follow it)."""
 
 import argparse
 import os
@@ -35,6 +39,7 @@ def main() -> None:
 
     from motiontool.ui.controllers import InterfaceConfig
     from motiontool.ui.main_window import MainWindow
+    from motiontool.ui.parameter_dialogs import ParametersDialog
 
     app = QApplication.instance() or QApplication(sys.argv)
     proc, url = start_drive(args.baud)
@@ -67,12 +72,48 @@ def main() -> None:
             print(f"ide_gui_stall_p99_{args.baud}_baud: {gaps[int(0.99 * (len(gaps) - 1))]:.0f} ms")
             print(f"ide_status_answers_{args.baud}_baud: {len(answers) / span:.2f} /s")
             print(f"ide_printed_lines_{args.baud}_baud: {printed / span:.2f} /s")
+            stall, shown = axis_dialog(app, window, ParametersDialog, QEventLoop, QTimer)
+            print(f"ide_axis_dialog_longest_stall: {stall:.0f} ms")
+            print(f"ide_axis_dialog_values_shown: {shown:.1f} s")
         finally:
             window.bridge.detach(close=False)
             window.controllers.close()
             window.close()
             proc.terminate()
             proc.wait(timeout=20)
+
+
+def axis_dialog(app, window, dialog_class, QEventLoop, QTimer) -> tuple[float, float]:  # noqa: N803 - Qt's names
+    """Parameters ▸ Axis until every value is shown: (longest gap of a 10 ms timer in ms, seconds until shown)."""
+    ticks: list[float] = []
+    shown: list[float] = []
+    timer = QTimer(window, interval=10, timeout=lambda: ticks.append(time.monotonic()))
+
+    def check() -> None:
+        dialog = app.activeModalWidget()
+        if not isinstance(dialog, dialog_class):
+            return
+        if dialog.waiting == 0 and dialog.ok.isEnabled():
+            shown.append(time.monotonic() - started)
+        elif time.monotonic() - started > 120 or dialog.message.styleSheet():   # a fault: said, not waited for
+            shown.append(float("nan"))
+            print(f"the Axis dialog did not fill in: {dialog.message.text()}", file=sys.stderr)
+        else:
+            return
+        poll.stop()
+        dialog.reject()
+
+    poll = QTimer(window, interval=10, timeout=check)
+    timer.start()
+    loop = QEventLoop()
+    QTimer.singleShot(200, loop.quit)     # the timer's ordinary pace before the menu entry
+    loop.exec()
+    started = time.monotonic()
+    poll.start()
+    window.actions_by_text["Axis..."].trigger()     # returns when the dialog is closed
+    timer.stop()
+    gaps = [b - a for a, b in zip(ticks, ticks[1:], strict=False) if a < started + shown[0]] if shown else []
+    return 1000 * max(gaps, default=float("nan")), shown[0] if shown else float("nan")
 
 
 if __name__ == "__main__":

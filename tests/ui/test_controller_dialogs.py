@@ -47,9 +47,9 @@ def button(dialog, text: str) -> QPushButton:
     return next(b for b in dialog.findChildren(QPushButton) if b.text().replace("&", "") == text)
 
 
-def values_read(qtbot, dialog: ParametersDialog) -> None:
+def values_read(qtbot, dialog: ParametersDialog, timeout_ms: int = 10_000) -> None:
     """The dialog appears at once and reads its values on a worker (issue 27 item 2): wait as a user waits."""
-    qtbot.waitUntil(lambda: dialog.waiting == 0 and dialog.ok.isEnabled(), timeout=10_000)
+    qtbot.waitUntil(lambda: dialog.waiting == 0 and dialog.ok.isEnabled(), timeout=timeout_ms)
 
 
 def choose_group(qtbot, dialog: ParametersDialog, title: str) -> None:
@@ -81,6 +81,7 @@ def test_axis_parameters_refuse_a_bad_kprop_with_the_reason_and_write_a_good_one
         seen["changed_style"] = field.widget.styleSheet()
         seen["pending"] = dialog.message.text()
         click(qtbot, button(dialog, "OK"))
+        qtbot.waitUntil(lambda: not dialog.isVisible(), timeout=10_000)   # once written (link-jobs thread)
 
     with answering(qtbot, edit):
         window.actions_by_text["Axis..."].trigger()
@@ -90,6 +91,38 @@ def test_axis_parameters_refuse_a_bad_kprop_with_the_reason_and_write_a_good_one
     assert seen["after_ok"] == (True, "Not written: 32-60 KPROP: 100001 is outside 0..100000", 30)
     assert "bold" in seen["changed_style"] and "1 changed value" in seen["pending"]
     assert window.bridge.link.read_parameter("KPROP") == 250
+    assert "Controller 1: wrote 32-60 KPROP" in window.messages.toPlainText()
+
+
+def test_choosing_another_controller_writes_the_changed_kprop_to_the_one_left_and_reads_the_next(window, qtbot):
+    """DG 2816-2818: "the changed values are written to the previous controller and the new controller's values
+    are read and displayed in the fields" - on the dialog's link-jobs thread (I30): while the values come the
+    fields wait and say so."""
+    seen = {}
+    other = window.controllers.link(2, interface=window.connection.interface_key)
+    other.write_parameter("KPROP", 44)
+
+    def switch(dialog):
+        assert isinstance(dialog, ParametersDialog)
+        dialog.activateWindow()
+        qtbot.waitUntil(dialog.isActiveWindow, timeout=2000)
+        values_read(qtbot, dialog)
+        choose_group(qtbot, dialog, "Position Regulation")
+        field = dialog.fields["32-60"]
+        retype(qtbot, field.widget, "55", leave_to=dialog.fields["32-61"].widget)
+        seen["controllers"] = [dialog.controller.itemText(i) for i in range(dialog.controller.count())]
+        qtbot.keyClick(dialog.controller, Qt.Key.Key_Down)       # the next controller, as from the keyboard
+        assert not dialog.ok.isEnabled()                         # writing to 1, then reading 2
+        values_read(qtbot, dialog)
+        seen["shown"] = (dialog.controller.currentData(), field.widget.text(), field.widget.styleSheet())
+        click(qtbot, button(dialog, "Cancel"))
+
+    with answering(qtbot, switch):
+        window.actions_by_text["Axis..."].trigger()
+    assert seen["controllers"][:2] == ["Controller 1", "Controller 2"]
+    assert seen["shown"] == (2, "44", "")
+    assert window.controllers.link(1, interface=window.connection.interface_key).read_parameter("KPROP") == 55
+    assert other.read_parameter("KPROP") == 44
     assert "Controller 1: wrote 32-60 KPROP" in window.messages.toPlainText()
 
 

@@ -9,7 +9,7 @@ from PySide6.QtWidgets import QAbstractSpinBox
 
 from motiontool.ui.parameter_dialogs import ParametersDialog
 from tests.modal import answering
-from tests.ui.test_controller_dialogs import button, choose_group, click, retype
+from tests.ui.test_controller_dialogs import button, choose_group, click, retype, values_read
 
 
 def set_kprop_in_the_axis_dialog(window, qtbot, value: str) -> None:
@@ -17,9 +17,11 @@ def set_kprop_in_the_axis_dialog(window, qtbot, value: str) -> None:
         assert isinstance(dialog, ParametersDialog)
         dialog.activateWindow()
         qtbot.waitUntil(dialog.isActiveWindow, timeout=2000)
+        values_read(qtbot, dialog)
         choose_group(qtbot, dialog, "Position Regulation")
         retype(qtbot, dialog.fields["32-60"].widget, value, leave_to=dialog.fields["32-61"].widget)
         click(qtbot, button(dialog, "OK"))
+        qtbot.waitUntil(lambda: not dialog.isVisible(), timeout=10_000)   # once written (link-jobs thread)
 
     with answering(qtbot, edit):
         window.actions_by_text["Axis..."].trigger()

@@ -6,12 +6,19 @@ the message line says why) and never sent; a good one is marked as changed (bold
 writes the changed values to the controller; choosing another controller first writes the pending values to the
 one being left, then reads the new one ("the changed values are written to the previous controller and the new
 controller's values are read", DG 2816-2818). F1 on a field shows the parameter's help. "Drive (FC 300)..." opens
-the drive's own parameters (ui/drive_parameters.py, I24)."""
+the drive's own parameters (ui/drive_parameters.py, I24).
+
+Reads and writes run on the dialog's link-jobs thread (ui/link_jobs.py, issue 27 item 2): Axis is ~115 reads, 6.6 s
+at 9600 baud, and the window stood still that long before the dialog appeared. Now the dialog appears at once, each
+field says "reading …" (and takes no input) until its answer arrives, and OK writes only the changed values (I22).
+Decision I30."""
 
 from __future__ import annotations
 
 from collections.abc import Callable
+from functools import cache
 
+from PySide6.QtCore import QTimer
 from PySide6.QtGui import QKeySequence, QShortcut
 from PySide6.QtWidgets import (
     QComboBox,
@@ -32,6 +39,7 @@ from motiontool.comms.protocol import LinkError
 from motiontool.paramdb import Parameter, ParameterError, database
 from motiontool.ui.controller_links import controller_link, interface_controllers
 from motiontool.ui.drive_parameters import DriveParametersDialog
+from motiontool.ui.link_jobs import LinkJobs
 
 CHANGED = "font-weight: bold; background: #fff3b0;"
 REFUSED = "background: #ffc8c8;"
@@ -61,8 +69,9 @@ GLOBAL_GROUPS: tuple[tuple[str, Callable[[Parameter], bool]], ...] = (
 )
 
 
-def grouped(groups) -> list[tuple[str, list[Parameter]]]:
-    return [(title, [p for p in database() if not p.read_only and keep(p)]) for title, keep in groups]
+@cache   # sorting the database into groups took ~25 ms of the GUI thread at each opening
+def grouped(groups) -> tuple[tuple[str, tuple[Parameter, ...]], ...]:
+    return tuple((title, tuple(p for p in database() if not p.read_only and keep(p))) for title, keep in groups)
 
 
 def _text(p: Parameter, value) -> str:
@@ -102,10 +111,32 @@ class ParameterField:
             return str(self.widget.currentData())
         return self.widget.text().strip()
 
+    def wait(self, text: str = "reading …") -> None:
+        """No value yet: the field is empty, says why and takes no input (a value typed now would be overwritten)."""
+        self._loading = True
+        self.current, self.pending, self.refused = None, None, None
+        self.widget.setPlaceholderText(text)
+        if isinstance(self.widget, QComboBox):
+            self.widget.setCurrentIndex(-1)
+        else:
+            self.widget.clear()
+        self.widget.setStyleSheet("")
+        self.widget.setEnabled(False)
+        self._loading = False
+
+    def written(self, value) -> None:
+        """`value` is now the controller's; a value typed meanwhile stays pending."""
+        if self.pending == value:
+            self.load(value)
+        else:
+            self.current = value
+
     def load(self, value) -> None:
         """Show the controller's value (forgets what was pending)."""
         self._loading = True
         self.current, self.pending, self.refused = value, None, None
+        self.widget.setPlaceholderText("")
+        self.widget.setEnabled(True)
         if isinstance(self.widget, QComboBox):
             index = self.widget.findData(value)
             if index < 0:  # a value outside the options: shown, not offered
@@ -132,6 +163,12 @@ class ParameterField:
         self._on_change(self)
 
 
+class _Ticket:
+    """One pass of reads; cancelled when its answers would be stale (another controller, a fault, closed)."""
+
+    cancelled = False
+
+
 class ParametersDialog(QDialog):
     """The fields of `groups` for one controller at a time; with several groups a list chooses the page."""
 
@@ -139,6 +176,9 @@ class ParametersDialog(QDialog):
         super().__init__(w)
         self.w = w
         self.setWindowTitle(title)
+        self.jobs = LinkJobs(self)
+        self._ticket = _Ticket()
+        self.waiting = 0                  # fields whose value has not arrived yet
         self.fields: dict[str, ParameterField] = {}
         self.controller = QComboBox()
         for cid in interface_controllers(w):
@@ -152,6 +192,7 @@ class ParametersDialog(QDialog):
         self.groups = QListWidget()
         single = QWidget()
         single_form = QFormLayout(single)
+        self._unbuilt: list[tuple[str | None, QFormLayout, tuple[Parameter, ...]]] = []
         for title_, parameters in grouped(groups):
             if paged:
                 page = QWidget()
@@ -160,20 +201,14 @@ class ParametersDialog(QDialog):
                 self.pages.addWidget(_scroll(page))
             else:  # one page with a heading per group (the manual's Global dialog)
                 form = single_form
-                heading = QLabel(title_)
-                heading.setStyleSheet("font-weight: bold; margin-top: 6px;")
-                form.addRow(heading)
-            for p in parameters:
-                field = self.fields[p.number] = ParameterField(p, self._field_changed)
-                label = QLabel(f"{p.description[:60]} [{p.label}]" + (f" ({p.unit})" if p.unit else ""))
-                label.setToolTip(p.description)
-                form.addRow(label, field.widget)
+            self._unbuilt.append((None if paged else title_, form, parameters))
         if not paged:
             self.pages.addWidget(_scroll(single))
         self.groups.currentRowChanged.connect(self.pages.setCurrentIndex)
         buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Ok | QDialogButtonBox.StandardButton.Cancel)
         buttons.accepted.connect(self.accept)
         buttons.rejected.connect(self.reject)
+        self.ok = buttons.button(QDialogButtonBox.StandardButton.Ok)
         # the drive's own parameters beside the option's, as MCT 10 shows them (I24)
         drive = buttons.addButton("Drive (FC 300)...", QDialogButtonBox.ButtonRole.ActionRole)
         drive.clicked.connect(lambda: show_drive(self.w, self))
@@ -194,22 +229,86 @@ class ParametersDialog(QDialog):
         self.resize(1000, 600)  # the long names of the manual and the value fields side by side
         if paged:
             self.groups.setCurrentRow(0)
-        self.read()
+        # all 115 Axis fields at once stood the window still ~150 ms: one group now, one per event-loop pass after
+        self._builder = QTimer(self, interval=0, timeout=self._build_group)
+        self._link = None
+        self._start_reading(sum(len(parameters) for *_, parameters in self._unbuilt))
+        self._build_group()
+        if self._unbuilt:
+            self._builder.start()
+
+    def _build_group(self) -> None:
+        """The next group's fields; their reads are asked at once."""
+        heading, form, parameters = self._unbuilt.pop(0)
+        if heading:
+            label = QLabel(heading)
+            label.setStyleSheet("font-weight: bold; margin-top: 6px;")
+            form.addRow(label)
+        new = {}
+        for p in parameters:
+            field = new[p.number] = ParameterField(p, self._field_changed)
+            label = QLabel(f"{p.description[:60]} [{p.label}]" + (f" ({p.unit})" if p.unit else ""))
+            label.setToolTip(p.description)
+            form.addRow(label, field.widget)
+        self.fields.update(new)
+        self._request(new)
+        if not self._unbuilt:
+            self._builder.stop()
 
     # --- reading and writing ---------------------------------------------------------------------------------
     def link(self):
         return controller_link(self.w, self._shown_controller)
 
-    def read(self) -> bool:
+    def read(self) -> None:
+        """Every field's value, one request each on the link-jobs thread: the fields fill in as answers arrive."""
+        self._start_reading(len(self.fields))
+        self._request(self.fields)
+
+    def _start_reading(self, count: int) -> None:
+        self._ticket.cancelled = True
+        self._ticket = _Ticket()
+        self.waiting = count
+        cid = self._shown_controller
         try:
-            link = self.link()
-            for number, field in self.fields.items():
-                field.load(field.p.from_raw(link.read_parameter(number)))
+            self._link = self.link()
         except (LinkError, ValueError) as exc:
-            self.say(f"Controller {self._shown_controller}: {exc}", error=True)
-            return False
-        self.say("")
-        return True
+            self._ticket.cancelled = True
+            self.say(f"Controller {cid}: {exc}", error=True)
+            return
+        self._busy(f"Controller {cid}: reading {count} parameters …")
+
+    def _request(self, fields: dict[str, ParameterField]) -> None:
+        ticket, link, cid = self._ticket, self._link, self._shown_controller
+        for number, field in fields.items():
+            if ticket.cancelled:              # no link, or a fault already said
+                field.wait("not read")
+                continue
+            field.wait()
+            # a request still queued when its answer would be stale is not sent: the line is free at once
+            self.jobs.run(lambda n=number: None if ticket.cancelled else link.read_parameter(n),
+                          lambda result, f=field: self._answer(ticket, cid, f, result))
+
+    def _answer(self, ticket: _Ticket, cid: int, field: ParameterField, result) -> None:
+        if ticket.cancelled:
+            return
+        try:
+            if isinstance(result, Exception):
+                raise result
+            field.load(field.p.from_raw(result))
+        except (LinkError, ValueError) as exc:
+            ticket.cancelled = True           # one answer missing: the rest would wait for the same fault
+            for f in self.fields.values():
+                if f.current is None:
+                    f.wait("not read")
+            self._busy(None)
+            self.say(f"Controller {cid}: {exc}", error=True)
+            return
+        self.waiting -= 1
+        if self.waiting:
+            self.message.setText(f"Controller {cid}: reading {self.waiting} parameters …")
+        else:
+            self._busy(None)
+            self._field_changed(field)
 
     def pending(self) -> dict[str, object]:
         return {n: f.pending for n, f in self.fields.items() if f.pending is not None}
@@ -217,39 +316,84 @@ class ParametersDialog(QDialog):
     def refused(self) -> list[str]:
         return [f.refused for f in self.fields.values() if f.refused]
 
-    def write(self) -> bool:
-        """Write the pending values; refused fields keep the dialog open with their reasons."""
-        if self.refused():
-            self.say("Not written: " + "; ".join(self.refused()), error=True)
-            return False
-        link = self.link()
-        written = []
+    def _write(self, then: Callable[[], None]) -> None:
+        """The pending values to the shown controller on the link-jobs thread, then `then()` if all were written."""
+        cid, values = self._shown_controller, self.pending()
+        raws = {n: self.fields[n].p.to_raw(v) for n, v in values.items()}
         try:
-            for number, value in self.pending().items():
-                field = self.fields[number]
-                link.write_parameter(number, field.p.to_raw(value))
-                field.load(value)
-                written.append(field.p.label)
+            link = self.link()
         except (LinkError, ValueError) as exc:
-            self.say(f"Controller {self._shown_controller}: {exc}", error=True)
-            return False
+            self.say(f"Controller {cid}: {exc}", error=True)
+            self._select(cid)
+            return
+
+        def work() -> tuple[list[str], Exception | None]:
+            written: list[str] = []
+            try:
+                for number, raw in raws.items():
+                    link.write_parameter(number, raw)
+                    written.append(number)
+            except (LinkError, ValueError) as exc:
+                return written, exc           # those before the fault are written and said so
+            return written, None
+
+        labels = [self.fields[n].p.label for n in values]
+        self._busy(f"Controller {cid}: writing {', '.join(labels)} …")
+        self.jobs.run(work, lambda result: self._written(cid, values, result, then))
+
+    def _written(self, cid: int, values: dict[str, object], result, then: Callable[[], None]) -> None:
+        self._busy(None)
+        written, error = ([], result) if isinstance(result, Exception) else result
+        for number in written:
+            self.fields[number].written(values[number])
         if written:
-            self.w.messages.ide(f"Controller {self._shown_controller}: wrote {', '.join(written)}")
-        return True
+            self.w.messages.ide(f"Controller {cid}: wrote {', '.join(self.fields[n].p.label for n in written)}")
+        if error is not None:
+            self.say(f"Controller {cid}: {error}", error=True)
+            self._select(self._shown_controller)
+            return
+        self.say("")
+        then()
 
     def accept(self) -> None:
-        if self.write():
+        if self.refused():
+            self.say("Not written: " + "; ".join(self.refused()), error=True)
+        elif self.pending():
+            self._write(lambda: super(ParametersDialog, self).accept())
+        else:
             super().accept()
+
+    def done(self, result: int) -> None:
+        self._ticket.cancelled = True         # closed: the reads still queued are not sent
+        super().done(result)
 
     def _controller_changed(self) -> None:
         """Another controller: the pending values go to the one left, then the new one's are read."""
-        if not self.write():
-            self.controller.blockSignals(True)
-            self.controller.setCurrentIndex(self.controller.findData(self._shown_controller))
-            self.controller.blockSignals(False)
+        new = self.controller.currentData()
+        if self.refused():
+            self._select(self._shown_controller)
+            self.say("Not written: " + "; ".join(self.refused()), error=True)
             return
-        self._shown_controller = self.controller.currentData()
-        self.read()
+
+        def switch() -> None:
+            self._shown_controller = new
+            self.read()
+
+        if self.pending():
+            self._write(switch)
+        else:
+            switch()
+
+    def _select(self, cid: int) -> None:
+        self.controller.blockSignals(True)
+        self.controller.setCurrentIndex(self.controller.findData(cid))
+        self.controller.blockSignals(False)
+
+    def _busy(self, text: str | None) -> None:
+        for widget in (self.ok, self.controller):
+            widget.setEnabled(text is None)
+        if text is not None:
+            self.say(text)
 
     # --- feedback ----------------------------------------------------------------------------------------------
     def say(self, text: str, *, error: bool = False) -> None:
@@ -356,12 +500,16 @@ class NameDialog(QDialog):
 
 def show_global(w) -> None:
     if w.development.connect_default():
-        ParametersDialog(w, "Global Parameters", GLOBAL_GROUPS, paged=False).exec()
+        dialog = ParametersDialog(w, "Global Parameters", GLOBAL_GROUPS, paged=False)
+        dialog.exec()
+        dialog.deleteLater()   # its link-jobs thread ends with it
 
 
 def show_axis(w) -> None:
     if w.development.connect_default():
-        ParametersDialog(w, "Axis Parameters", AXIS_GROUPS, paged=True).exec()
+        dialog = ParametersDialog(w, "Axis Parameters", AXIS_GROUPS, paged=True)
+        dialog.exec()
+        dialog.deleteLater()
 
 
 def show_name(w) -> None:
