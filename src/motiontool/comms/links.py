@@ -69,26 +69,35 @@ class LinkSpec:
 
 
 def parse_link_spec(text: str) -> LinkSpec:
-    """`SCHEME[:TARGET][#NODE][,KEY=VALUE]...` → LinkSpec; LinkError naming the spec when it is malformed."""
+    """`SCHEME[:TARGET][#NODE][,KEY=VALUE]...` → LinkSpec; LinkError naming the spec when it is malformed. Options
+    may come before `#NODE` too (`fc:/dev/pts/3,baud=115200#1`: the drive's printed URL with a node added); one
+    written after the node wins."""
     rest = text.strip()
     if not rest:
         raise LinkSpecError("empty link: give sim, fc:URL[#ADDRESS] or another registered scheme")
-    options: dict[str, str] = {}
-    while (m := _OPTION.search(rest)) is not None:
-        options[m.group(1).lower()] = m.group(2)
-        rest = rest[:m.start()]
+    rest, options = _strip_options(rest)
     node = None
     if (m := _NODE.search(rest)) is not None:
         try:
             node = whole(m.group(1), f"link '{shown(text)}': the address", *ADDRESS, sep=" #")
         except BadNumber as exc:
             raise LinkSpecError(str(exc)) from None
-        rest = rest[:m.start()]
+        rest, before = _strip_options(rest[:m.start()])
+        options = {**before, **options}
     scheme, _, target = rest.partition(":")
     scheme = scheme.strip().lower()
     if not re.fullmatch(r"[a-z][a-z0-9_-]*", scheme):
         raise LinkSpecError(f"link '{text}': '{scheme}' is not a link scheme (try {', '.join(link_schemes())})")
-    return LinkSpec(scheme, target.strip(), node, dict(reversed(options.items())), text.strip())
+    return LinkSpec(scheme, target.strip(), node, options, text.strip())
+
+
+def _strip_options(rest: str) -> tuple[str, dict[str, str]]:
+    """`…,KEY=VALUE,…` at the end of `rest`: what is left and the options in the order written."""
+    options: dict[str, str] = {}
+    while (m := _OPTION.search(rest)) is not None:
+        options[m.group(1).lower()] = m.group(2)
+        rest = rest[:m.start()]
+    return rest, dict(reversed(options.items()))
 
 
 @dataclass(frozen=True)

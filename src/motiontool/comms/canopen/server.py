@@ -97,6 +97,7 @@ class SlcanListener:
     """`canopen:slcan:socket://HOST:PORT` for `motiontool drive --listen` (port 0: any free port)."""
 
     def __init__(self, spec, drive):
+        spec.check_options({"any_host"})     # the master sets the slcan bit rate (S0-S8): nothing else to take
         interface, _, channel = spec.target.partition(":")
         if interface != "slcan" or not channel.startswith("socket://"):
             raise LinkError(f"--listen '{spec.text}': the CANopen drive listens as canopen:slcan:socket://HOST:PORT")

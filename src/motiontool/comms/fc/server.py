@@ -195,7 +195,7 @@ class FcSocketListener(_Serving):
         self.server = socket.create_server((host, port), family=family)
         self.server.settimeout(0.1)
         host, port = self.server.getsockname()[:2]
-        self.url = f"fc:socket://{url_host(host)}:{port}"
+        self.url = f"fc:socket://{url_host(host)}:{port}" + _baud(baud)
         self._spawn(self._accept)
 
     def _accept(self) -> None:
@@ -247,7 +247,7 @@ class FcPtyListener(_Serving):
         self.master_fd, self.slave_fd = os.openpty()
         tty.setraw(self.slave_fd)    # no echo, no line editing: a byte stream like a serial line
         self.path = os.ttyname(self.slave_fd)
-        self.url = f"fc:{self.path}"
+        self.url = f"fc:{self.path}" + _baud(baud)
         self._spawn(self._serve)
 
     def _serve(self) -> None:
@@ -272,6 +272,11 @@ class FcPtyListener(_Serving):
         for fd in (self.master_fd, self.slave_fd):
             with contextlib.suppress(OSError):
                 os.close(fd)
+
+
+def _baud(baud: int | None) -> str:
+    """The printed URL is what a master gives to --link: with the line's pace, so it times the line as it is."""
+    return f",baud={baud}" if baud else ""
 
 
 def open_fc_listener(spec: LinkSpec, drive):
