@@ -250,7 +250,7 @@ def list_testsetp(link: Link) -> list[dict]:
     return link.call("list_recordings")
 
 
-def _recorded_start(scope: Scope, exclude: Curve | None = None) -> float | None:
+def recorded_start(scope: Scope, exclude: Curve | None = None) -> float | None:
     """Where the recordings already in the scope start: the earliest first sample of its recorded curves."""
     starts = [c.raw()[0][0] for c in scope.curves
               if c is not exclude and c.source.method not in ("derived",) and len(c.buffer)]
@@ -266,7 +266,7 @@ def load_testsetp(scope: Scope, link: Link, index: int, axis: int = 1, label: st
     curves = []
     n = len(data["samples"])
     first = data.get("first_ms", data["start_ms"])
-    start = _recorded_start(scope)
+    start = recorded_start(scope)
     t = (first if start is None else start) + np.arange(n, dtype=float) * data["interval_ms"]
     values = np.asarray(data["samples"], dtype=float).reshape(n, len(data["indices"]))
     for j, (idx, name) in enumerate(zip(data["indices"], data["names"], strict=True)):
@@ -294,7 +294,7 @@ def reload_testsetp(scope: Scope, link: Link, curve: Curve) -> None:
     n = len(data["samples"])
     j = [str(i) for i in data["indices"]].index(curve.source.signal)
     first = data.get("first_ms", data["start_ms"])
-    start = curve.raw()[0][0] if len(curve.buffer) else _recorded_start(scope, exclude=curve)
+    start = curve.raw()[0][0] if len(curve.buffer) else recorded_start(scope, exclude=curve)
     t = (first if start is None else start) + np.arange(n, dtype=float) * data["interval_ms"]
     curve.source.info["recorded_at_ms"] = first
     curve.buffer.set_capacity(max(n, 1))

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from motiontool.scope.buffer import DEFAULT_CAPACITY, RingBuffer
+from motiontool.scope.numbers import value_text
 
 PALETTE = ["#e6194b", "#3cb44b", "#4363d8", "#f58231", "#911eb4", "#42d4f4", "#f032e6", "#9a6324",
            "#808000", "#000075", "#a9a9a9", "#bfef45"]
@@ -136,7 +137,7 @@ class Curve:
             return f"0x{int(value) & 0xFFFFFFFF:X}"
         if self.fmt == "character" and self.interpolation == "values":
             return "".join(chr(b) if 32 <= b < 127 else "." for b in int(value).to_bytes(4, "big", signed=True))
-        return f"{value:.6g}"
+        return value_text(value)
 
     def y_range(self) -> tuple[float, float]:
         """Axis → Scaling (DG 5191-5203): data min/max padded ~10 %, at least Min Height; centre zero."""
@@ -190,7 +191,7 @@ class Settings:
     """Settings → Oscilloscope (DG 5963-6001)."""
     poll_ms: int = 100
     default_samples: int = DEFAULT_CAPACITY
-    relative_origin: bool = False     # Shift to 0 initial state
+    relative_origin: bool = False     # Shift to 0 initial state (a new window turns it on, decision S32)
     min_length_ms: float = 1000.0
     bus_bitrate: int = 125_000        # for the polling load estimate (decisions in scope/acquisition.py)
 
@@ -240,13 +241,19 @@ class Scope:
         if curve.buffer.capacity != self.settings.default_samples and len(curve.buffer) == 0:
             curve.buffer = RingBuffer(self.settings.default_samples)
         if curve.colour == PALETTE[0]:
-            curve.colour = PALETTE[len(self.curves) % len(PALETTE)]
+            curve.colour = self._free_colour()
         if after is not None:
             i = [c.name for c in self.curves].index(after)
             self.curves.insert(i + 1, curve)
         else:
             self.curves.append(curve)
         return curve
+
+    def _free_colour(self) -> str:
+        """The first palette colour no curve has (counting curves repeated colours after a removal), else the
+        next in turn."""
+        used = {c.colour for c in self.curves}
+        return next((c for c in PALETTE if c not in used), PALETTE[len(self.curves) % len(PALETTE)])
 
     def rename_curve(self, old: str, new: str) -> str:
         """Rename a curve (made unique) and every reference to it: shared axes and derived curves' inputs."""

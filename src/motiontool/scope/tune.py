@@ -19,6 +19,7 @@ import numpy as np
 
 from motiontool.aposs.driver import compile_source
 from motiontool.comms.link import Link
+from motiontool.scope.acquisition import recorded_start
 from motiontool.scope.curves import Curve, Group, Scope, Source
 
 SIGNALS = ("CPOS", "APOS", "TRACKERR", "AVEL")
@@ -134,6 +135,7 @@ class Tune:
         data = self.link.call("stop_recording")
         t = np.asarray(data["time_ms"], dtype=float)
         v = np.asarray(data["samples"], dtype=float).reshape(t.size, len(SIGNALS))
+        recorded_at = float(t[0]) if t.size else None
         if t.size:
             t = t - t[0]
         cfg = self.config
@@ -146,12 +148,14 @@ class Tune:
         target = float(v[-1, 0]) if t.size else float(cfg.distance)
         overshoot, settling, peak = measure(t, v[:, 0], v[:, 1], v[:, 2], target, np.sign(cfg.distance),
                                             cfg.band)
+        # on the time base of what the scope holds (a TESTSETP set sits at its controller time, decision S15)
+        t = t + (recorded_start(self.scope) or 0.0)
         group = self.scope.add_group(Group(f"Tune run {run}", method="single_shot", interval_ms=1,
                                            count=cfg.max_ms))
         names = []
         for j, signal in enumerate(SIGNALS):
             curve = Curve(f"Run {run}: {signal}", Source(method="single_shot", signal=signal, group=group.name,
-                                                          info={"run": run}),
+                                                          info={"run": run, "recorded_at_ms": recorded_at}),
                           unit="UU/s" if signal == "AVEL" else "UU", first_of_set=j == 0)
             curve.buffer.set_capacity(max(t.size, 1))
             curve.buffer.extend(t, v[:, j])

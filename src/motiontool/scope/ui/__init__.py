@@ -7,6 +7,8 @@ from PySide6.QtCore import Qt
 
 from motiontool.scope.ui.window import ScopeWindow, open_scope_file
 
+LIVE_KEY = "oscilloscope/live_window_s"
+
 __all__ = ["ScopeWindow", "close_scopes", "open_scope", "open_scope_file"]
 
 
@@ -17,6 +19,10 @@ def open_scope(main_window, variant: str = "free_run") -> ScopeWindow:
     if development is not None and not main_window.bridge.connected:
         development.connect_default()
     window = ScopeWindow(main_window.bridge, variant, parent=main_window)
+    settings = getattr(main_window, "settings", None)
+    if settings is not None:   # the live window is the user's setting, kept between sessions
+        window.live_box.setValue(int(settings.value(LIVE_KEY, window.live_box.value(), type=int)))
+        window.live_box.valueChanged.connect(lambda seconds: settings.setValue(LIVE_KEY, seconds))
     window.setWindowFlag(Qt.Window, True)  # a top-level window owned by the main window
     window.show()
     return window

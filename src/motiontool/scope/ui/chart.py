@@ -16,6 +16,7 @@ from PySide6.QtWidgets import QSplitter, QVBoxLayout, QWidget
 
 from motiontool.scope.buffer import MinMaxPyramid, decimate_minmax, visible_slice
 from motiontool.scope.curves import Curve, Scope
+from motiontool.scope.numbers import decimals_for, grouped, time_ticks, time_unit
 
 PYRAMID_MIN = 200_000   # samples from which a curve's min/max pyramid is cached for browsing
 AXIS_WIDTH = 78         # fixed: a new, longer tick label must not make the chart jump (PlotJuggler #1380)
@@ -50,6 +51,47 @@ class ScaledAxis(pg.AxisItem):
         self._norm = (mn, mx)
         lo, hi = self.mapping
         super().setRange(lo + mn * (hi - lo), lo + mx * (hi - lo))
+
+    def tickStrings(self, values, scale, spacing):  # noqa: N802 - pyqtgraph override
+        # pyqtgraph writes 1.3244e+06 for large values; grouped digits read at a glance (issue 23 item 8)
+        places = decimals_for(spacing * scale)
+        return [grouped(v * scale, places) for v in values]
+
+
+class TimeAxis(pg.AxisItem):
+    """The time axis: milliseconds in the view, labelled in s from a visible span of 2 s on, else in ms, never
+    in scientific notation. `relative` says whether 0 is the recording's start (Shift to 0) or the controller's
+    power-up."""
+
+    def __init__(self, *, titled: bool = True) -> None:
+        self.titled = titled   # the navigation pane has no room for a title
+        self.unit = ""         # set before the base class calls setRange
+        self.relative = True
+        super().__init__("bottom")
+        self.enableAutoSIPrefix(False)
+        self.unit = ""
+        self._retitle()
+
+    def _retitle(self) -> None:
+        span = abs(self.range[1] - self.range[0])
+        unit = time_unit(span)
+        if unit != self.unit:
+            self.unit = unit
+            if not self.titled:
+                return
+            what = "time from the recording's start" if self.relative else "controller time"
+            self.setLabel(f"{what} [{unit}]")
+
+    def set_relative(self, relative: bool) -> None:
+        self.relative, self.unit = relative, ""
+        self._retitle()
+
+    def setRange(self, mn: float, mx: float):  # noqa: N802 - pyqtgraph override
+        super().setRange(mn, mx)
+        self._retitle()
+
+    def tickStrings(self, values, scale, spacing):  # noqa: N802 - pyqtgraph override
+        return time_ticks(list(values), spacing, self.unit)
 
 
 class ChartViewBox(pg.ViewBox):
@@ -104,9 +146,8 @@ class Chart(QWidget):
         self.live = False
         self.ranges: dict[str, tuple[float, float]] = {}
         self.left_axis, self.right_axis = ScaledAxis("left"), ScaledAxis("right")
-        bottom = pg.AxisItem("bottom")
-        bottom.setLabel("time", units="ms")
-        bottom.enableAutoSIPrefix(False)
+        bottom = self.time_axis = TimeAxis()
+        bottom.set_relative(self.shift_to_zero)
         self.plot = pg.PlotWidget(viewBox=ChartViewBox(),
                                   axisItems={"left": self.left_axis, "right": self.right_axis, "bottom": bottom})
         self.plot.setBackground("w")
@@ -141,7 +182,9 @@ class Chart(QWidget):
         self.zero_marks = pg.ScatterPlotItem(symbol="t2", size=12, pen=None)  # Axis → Display zero mark
         self.plot.addItem(self.zero_marks, ignoreBounds=True)
         # navigation: the whole recording with the visible region (DG 4789-4819)
-        self.nav = pg.PlotWidget()
+        self.nav_time_axis = TimeAxis(titled=False)
+        self.nav_time_axis.set_relative(self.shift_to_zero)
+        self.nav = pg.PlotWidget(axisItems={"bottom": self.nav_time_axis})
         self.nav.setBackground("w")
         self.nav.setMenuEnabled(False)
         self.nav.hideButtons()
@@ -179,6 +222,12 @@ class Chart(QWidget):
         return t, y, pyramid
 
     # --- time origin -----------------------------------------------------------------------------------------
+    def set_shift(self, on: bool) -> None:
+        """Shift to 0 on or off: the origin and the time axes' titles."""
+        self.shift_to_zero = on
+        self.time_axis.set_relative(on)
+        self.nav_time_axis.set_relative(on)
+
     def origin(self) -> float:
         """Shift to 0 (DG 4728-4739): the first sample becomes time 0."""
         if not self.shift_to_zero:
@@ -258,12 +307,16 @@ class Chart(QWidget):
 
     def _default_sides(self) -> None:
         """Until the user picks (Grid column / selection), the first visible curve owns the left axis and the
-        first one with another scale the right axis."""
-        visible = [c.name for c in self.scope.curves if c.visible]
-        if self.left_curve not in visible:
+        first one with another scale the right axis; a curve with data goes before an empty one, whose 0..1 scale
+        is not what the drawn curves are read against (a TESTSETP set was, issue 23 item 8)."""
+        shown = [c for c in self.scope.curves if c.visible]
+        filled = [c.name for c in shown if len(c.buffer)]
+        visible = filled + [c.name for c in shown if not len(c.buffer)]
+        if self.left_curve not in visible or (filled and self.left_curve not in filled):
             self.left_curve = visible[0] if visible else None
         left_root = self.scope.shared_root(self.left_curve) if self.left_curve else None
-        if self.right_curve not in visible or self.scope.shared_root(self.right_curve) == left_root:
+        if self.right_curve not in visible or (filled and self.right_curve not in filled) or \
+                self.scope.shared_root(self.right_curve) == left_root:
             self.right_curve = next((n for n in visible if self.scope.shared_root(n) != left_root), None)
 
     def _update_axes(self) -> None:

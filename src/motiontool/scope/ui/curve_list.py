@@ -9,6 +9,7 @@ from PySide6.QtWidgets import QTreeWidget, QTreeWidgetItem
 
 from motiontool.scope.curves import OTHER_CURVES, Curve, Scope
 from motiontool.scope.measure import curve_value_at
+from motiontool.scope.numbers import grouped, value_text
 
 COLUMNS = ["Name", "Grid", "Status", "Active", "Mouse", "Last", "Minimum", "Maximum", "A", "B", "B−A", "Units",
            "Controller", "Interface"]
@@ -40,6 +41,7 @@ class CurveList(QTreeWidget):
         self.setIndentation(8)
         self.setUniformRowHeights(True)
         self.controller_state = "unbound"
+        self.origin = lambda: 0.0            # the chart's time origin (Shift to 0): times read as on its axis
         self.controller_name = ""
         self.interface = ""
         self._filling = False
@@ -89,9 +91,10 @@ class CurveList(QTreeWidget):
     def update_values(self, *, mouse_t: float | None = None) -> None:
         """Last/Min/Max, mouse and cursor columns; out-of-range values red (DG 5131-5141)."""
         ta, tb = self.scope.cursors
-        self.headerItem().setText(A, "A" if ta is None else f"A {ta:.0f}ms")
-        self.headerItem().setText(B, "B" if tb is None else f"B {tb:.0f}ms")
-        self.headerItem().setText(MOUSE, "Mouse" if mouse_t is None else f"{mouse_t:.0f}ms")
+        o = self.origin()
+        self.headerItem().setText(A, "A" if ta is None else f"A {grouped(ta - o)}ms")
+        self.headerItem().setText(B, "B" if tb is None else f"B {grouped(tb - o)}ms")
+        self.headerItem().setText(MOUSE, "Mouse" if mouse_t is None else f"{grouped(mouse_t - o)}ms")
         self._filling = True
         for c in self.scope.curves:
             item = self.item_for(c.name)
@@ -131,7 +134,7 @@ class CurveList(QTreeWidget):
             item.setText(col, "")
             item.setBackground(col, QBrush())
             return
-        text = f"{value:.6g}" if interpolated and curve.interpolation != "values" else curve.format_value(value)
+        text = value_text(value) if interpolated and curve.interpolation != "values" else curve.format_value(value)
         item.setText(col, text)
         item.setBackground(col, QBrush(RED) if check and curve.out_of_range(value) else QBrush())
 

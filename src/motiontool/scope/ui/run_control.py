@@ -66,6 +66,7 @@ class RunControl:
             self.statusBar().showMessage(str(exc), 10000)
             return
         self.chart.live = True
+        self._live_width = None   # the next tick sets the live window
         self.refresh_timer.start()
         self._update_title()
 
@@ -157,17 +158,27 @@ class RunControl:
         derived.refresh(self.scope)
         span = self.scope.time_span()
         if span and (self.free_run is None or self.free_run.trigger is None):  # follow the newest data
-            x0, x1 = self.chart.view.viewRange()[0]
-            width = max(x1 - x0, self.scope.settings.min_length_ms)
-            o = self.chart.origin()
-            if span[1] - o > x1 or span[1] - o < x0:
-                self.chart.view.setXRange(span[1] - o - width, span[1] - o, padding=0)
+            self._follow(span)
         self.chart.refresh(navigation=False)  # the navigation pane is not drawn while recording (DG 5843)
         self._ticks += 1
         if self._ticks % LIST_EVERY == 0:  # numbers people read: 5 updates a second are plenty
             self.list.update_values(mouse_t=self.mouse_t)
             self._update_title()
 
+
+    def _follow(self, span: tuple[float, float]) -> None:
+        """Show the live window (Live box, default 10 s) ending at the newest sample, filling from the left until
+        the recording is that long. A zoom made during this run is kept; the previous run's zoom is not (it
+        left ~1 s windows behind, issue 23 item 8)."""
+        x0, x1 = self.chart.view.viewRange()[0]
+        width = self.live_window_ms
+        if self._live_width is not None and abs((x1 - x0) - self._live_width) > 0.01 * self._live_width:
+            width = x1 - x0   # the user zoomed while recording
+        o = self.chart.origin()
+        lo = max(span[0], span[1] - width) - o
+        if self._live_width is None or width != self._live_width or span[1] - o > x1 or span[1] - o < x0:
+            self.chart.view.setXRange(lo, lo + width, padding=0)
+            self._live_width = width
 
     # --- tune ------------------------------------------------------------------------------------------------
     def run_tune(self) -> None:

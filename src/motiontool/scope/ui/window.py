@@ -40,6 +40,7 @@ from motiontool.scope.curves import Scope
 from motiontool.scope.export import export_csv
 from motiontool.scope.mdf4 import Mdf4Unavailable, export_mdf4
 from motiontool.scope.measure import cursor_frequency
+from motiontool.scope.numbers import time_text, time_unit
 from motiontool.scope.select import with_suffix, without_suffix
 from motiontool.scope.testrun import read_testrun
 from motiontool.scope.tune import Tune
@@ -53,6 +54,7 @@ from motiontool.scope.ui.save_name import ask_save_name
 
 TITLES = {"free_run": "Free Run", "polling": "Free Run (polling)", "single_shot": "Single Shot",
           "testsetp": "TESTSETP", "tune": "Tune"}
+LIVE_WINDOW_S = 10      # default time shown while recording (decision S32)
 REFRESH_MS = 50         # display refresh while recording (run_control.LIST_EVERY: list and title)
 
 
@@ -67,7 +69,10 @@ class ScopeWindow(RunControl, QMainWindow):
         self.setAttribute(Qt.WA_DeleteOnClose, False)
         self.ask = ask            # False: no modal dialogs (tests, scripted use)
         self.path = path
-        self.scope = scope or Scope(variant)
+        if scope is None:   # a new recording reads from 0: the controller's clock counts from power-up (S32)
+            scope = Scope(variant)
+            scope.settings.relative_origin = True
+        self.scope = scope
         self.bridge = None
         self._link = None
         self._relay = _Relay(self)
@@ -82,10 +87,13 @@ class ScopeWindow(RunControl, QMainWindow):
         self.trigger = None          # (curve name, Trigger) for Free Run, or None
         self.trigger_single = True
         self._recording_status = None
+        self.live_window_ms = LIVE_WINDOW_S * 1000.0
+        self._live_width: float | None = None
         self._saved_mark: tuple = ()  # the samples as last saved or loaded (unsaved_recording)
 
         self.chart = Chart(self.scope)
         self.list = CurveList(self.scope)
+        self.list.origin = self.chart.origin
         split = QSplitter(Qt.Vertical)
         split.addWidget(self.chart)
         split.addWidget(self.list)
@@ -210,6 +218,14 @@ class ScopeWindow(RunControl, QMainWindow):
         self.poll_box.setToolTip("Poll rate of polled curves (Settings → Oscilloscope, DG 5975-6001)")
         self.poll_box.valueChanged.connect(self._set_poll_ms)
         self.poll_box_action = tb.addWidget(self.poll_box)
+        self.live_box = QSpinBox()
+        self.live_box.setRange(1, 3600)
+        self.live_box.setPrefix("Live ")
+        self.live_box.setSuffix(" s")
+        self.live_box.setValue(LIVE_WINDOW_S)
+        self.live_box.setToolTip("Time shown while recording (newest at the right); a zoom while recording wins")
+        self.live_box.valueChanged.connect(self._set_live_window)
+        self.live_box_action = tb.addWidget(self.live_box)
         tb.addSeparator()
         self.zoom_action = act("Zoom Reset", self.zoom_reset, shortcut="Ctrl+0")
         self.cursor_a = act("Cursor A", lambda on: self.chart.show_cursor(0, on), checkable=True)
@@ -251,6 +267,7 @@ class ScopeWindow(RunControl, QMainWindow):
         self.pause_action.setEnabled(variant in ("free_run", "polling"))
         self.load_action.setVisible(variant == "testsetp")
         self.poll_box_action.setVisible(variant in ("free_run", "polling"))
+        self.live_box_action.setVisible(variant in ("free_run", "polling"))
         self.trigger_action.setVisible(variant == "free_run")
         self.tune_dock.setVisible(variant == "tune")
         if variant == "tune" and self.link is not None:
@@ -319,6 +336,11 @@ class ScopeWindow(RunControl, QMainWindow):
             if not ok:
                 return
             chosen = found[labels.index(text)]
+        if any(c.source.method == "testsetp" and c.source.info.get("index") == chosen["index"]
+               for c in self.scope.curves):   # a second Load added the same set again (issue 23 item 8)
+            self.statusBar().showMessage(f"Recording {chosen['index']} ({chosen['name']}) is shown already; "
+                                         "Reload in the curve list reads it again", 10000)
+            return
         label = "" if not self.scope.curves else f"#{chosen['index']} "
         load_testsetp(self.scope, self.link, chosen["index"], label=label)
         self.list.rebuild()
@@ -342,12 +364,16 @@ class ScopeWindow(RunControl, QMainWindow):
         self.redraw()
 
     def toggle_shift(self, on: bool) -> None:
-        self.chart.shift_to_zero = on
+        self.chart.set_shift(on)
         self.chart.set_pauses(self.scope.pauses)
         for i in (0, 1):
             if self.scope.cursors[i] is not None and self.chart.cursors[i].isVisible():
                 self.chart.set_cursor(i, self.scope.cursors[i])
         self.zoom_reset()
+
+    def _set_live_window(self, seconds: int) -> None:
+        self.live_window_ms = seconds * 1000.0
+        self._live_width = None   # applied at the next refresh, also during a recording
 
     # --- read-outs -------------------------------------------------------------------------------------------
     def _mouse_time(self, t: float) -> None:
@@ -357,14 +383,13 @@ class ScopeWindow(RunControl, QMainWindow):
 
     def _update_readout(self, *_) -> None:
         ta, tb = self.scope.cursors
-        parts = []
-        if ta is not None:
-            parts.append(f"A {ta:.1f} ms")
-        if tb is not None:
-            parts.append(f"B {tb:.1f} ms")
+        o = self.chart.origin()   # the times as the axis reads them, all in one unit
+        shown = [(n, t - o) for n, t in (("A", ta), ("B", tb)) if t is not None]
+        unit = time_unit(max((abs(t) for _n, t in shown), default=0.0))
+        parts = [f"{n} {time_text(t, unit)}" for n, t in shown]
         if ta is not None and tb is not None:
             f = cursor_frequency(ta, tb)
-            parts.append(f"Δt {tb - ta:.1f} ms" + (f"   1/Δt {f:.4g} Hz" if f else ""))
+            parts.append(f"Δt {time_text(tb - ta, unit)}" + (f"   1/Δt {f:.4g} Hz" if f else ""))
         self.readout.setText("   ".join(parts))
         self.list.update_values(mouse_t=self.mouse_t)
 
