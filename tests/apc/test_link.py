@@ -153,3 +153,12 @@ def test_threaded_link_paces_the_apc_in_real_time():
         assert link.call("identify")["kind"] == "APC"
     finally:
         link.close()
+
+
+def test_polled_curves_are_time_stamped_with_the_apcs_clock():
+    """Decision A76. The scope polls its curves with SYSVAR sys_clock (4119) for the time stamp; the APC refused it
+    ("no APC read parameter [4119]"), so no polled curve ran on the APC."""
+    link = embedded_apc_link()
+    link.write_parameter("18.11", 50)
+    link.advance(7)
+    assert link.call("read_signals", signals=["18.11", "APC_FB_POS", "4119"]) == [50, 0, 7]

@@ -7,7 +7,8 @@ line, one service per node — so the scope, the watch and the array editor work
 * `identify` names the kind: ``{"product", "kind": "APC", "firmware", "protocol", "pos_period_us"}``.
 * `read_parameter` / signals: an APC read parameter by number (48), "[48]", "1048" (raw) or alias
   ("APC_FB_POS"), or a drive parameter written with a dot ("18.11", "#1.06"); `write_parameter` writes drive
-  parameters (the read parameters change only through the APC calls).
+  parameters (the read parameters change only through the APC calls). The scope's time stamp, SYSVAR sys_clock
+  "4119", reads the service's clock in ms, so polled curves work as on the MCO.
 * `status`: apos = [48], cpos = [142] (the position loop's reference), axend = [120]; error = 90.49.
 * Arrays belong to the DPL program: a program host (the DPL runtime) fills `arrays` with (name, list) pairs.
 * Programs: the ops `download`, `start`, `break`, `continue`, `list_programs`, `delete_program`,
@@ -45,6 +46,7 @@ def apc_reader(drive: ApcDrive, key) -> Callable[[], int]:
     return lambda: drive.read_parameter(number)[0]
 
 
+SYS_CLOCK = "4119"   # SYSVAR sys_clock (docs/sysvar.md)
 INPUT_NAMES = {"0": "DIGIN0", "DIGIN0": "DIGIN0", "REF_MARKER": "REF_MARKER", "FB_MARKER": "FB_MARKER"}
 
 
@@ -199,11 +201,18 @@ class ApcService:
 
     def op_stream(self, signals, interval_ms=1) -> None:
         self.flush_stream()
-        self.stream_signals = [(str(name), apc_reader(self.drive, name)) for name in signals]
+        self.stream_signals = [(str(name), self.signal(name)) for name in signals]
         self.stream_interval = max(1, int(interval_ms))
 
+    def signal(self, name) -> Callable[[], int]:
+        """A reader for a scope signal: the MCO's SYSVAR sys_clock (4119, ms), which the scope reads with every
+        poll to time-stamp it, is the service's clock here (decision A76); anything else `apc_reader`."""
+        if str(name).strip() == SYS_CLOCK:
+            return lambda: self.time_ms
+        return apc_reader(self.drive, name)
+
     def op_read_signals(self, signals) -> list:
-        return [apc_reader(self.drive, name)() for name in signals]
+        return [self.signal(name)() for name in signals]
 
     def op_set_input(self, number, value) -> None:
         """An input of the simulated drive now (`apc_input`): DIGIN0 (T10, the freeze input, L629-643) as a level,
