@@ -3,7 +3,7 @@
 Settings → Interface: the interface type, its port or URL, baud rate and controller ID scan range; one type is the
 default (Esc and commands without a controller connect through it). Changes affect only new connections.
 Select Controller: a tree of the open interfaces and their controllers; an Interface drop-down with Open Interface
-opens another one (without changing the default).
+opens another one (without changing the default), the simulated APC among them.
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ from PySide6.QtWidgets import (
 )
 
 from motiontool.comms.protocol import LinkError
-from motiontool.ui.controllers import BAUDS, SIMULATED_IDS, ControllerRegistry, InterfaceConfig
+from motiontool.ui.controllers import APC_SIM, BAUDS, SIMULATED_IDS, ControllerRegistry, InterfaceConfig
 
 KINDS = {"sim": "Simulator (embedded MCO 305)", "fc": "FC protocol (RS-485 / USB)",
          "canopen": "CANopen (slcan, SocketCAN, PCAN, Kvaser, IXXAT … adapter)"}
@@ -35,6 +35,9 @@ DEFAULTS = {"sim": InterfaceConfig("sim", "", 9600, 1, len(SIMULATED_IDS)),
             "canopen": InterfaceConfig("canopen", "slcan:socket://127.0.0.1:4002", 9600, 1, 8),
             "fc": InterfaceConfig("fc", "/dev/ttyUSB0", 9600, 1, 8)}
 ROLE = Qt.ItemDataRole.UserRole
+# Select Controller also opens the simulated APC, the controller DPL programs run on (A68); it has no settings
+# (one controller, no port), so it is not a type of Settings → Interface
+APC_KIND = (APC_SIM, "APC simulator (Unidrive SP + SM-Applications, DPL)", InterfaceConfig(APC_SIM, "", 9600, 1, 1))
 
 
 # --- settings --------------------------------------------------------------------------------------------------
@@ -162,7 +165,8 @@ class SelectControllerDialog(QDialog):
         self.tree = QTreeWidget()
         self.tree.setHeaderLabels(["Interface / controller", "Name"])
         self.interface = QComboBox()
-        for kind, text in KINDS.items():
+        self.configs[APC_SIM] = APC_KIND[2]
+        for kind, text in (*KINDS.items(), APC_KIND[:2]):
             self.interface.addItem(f"{text}: {self.configs[kind].description}", kind)
         self.interface.setCurrentIndex(max(0, self.interface.findData(default_kind)))  # Open Interface: the default
         self.open_button = QPushButton("Open Interface")

@@ -70,6 +70,7 @@ def build_menus(w) -> None:
                                    ("Axis...", None, lambda: _parameters(w, "axis")),
                                    ("Name...", None, lambda: _parameters(w, "name")),
                                    ("Drive (FC 300)...", None, lambda: _parameters(w, "drive")),
+                                   ("APC (Unidrive SP)...", None, lambda: _apc_parameters(w)),
                                    ("Save to file...", None, lambda: cm.save_parameters(w)),
                                    ("Restore from file...", None, lambda: cm.restore_parameters(w))]),
             ("&Memory", None, [(title, None, lambda *, k=key: cm.memory(w, k))
@@ -266,6 +267,12 @@ def _parameters(w, which: str) -> None:
 
     {"global": parameter_dialogs.show_global, "axis": parameter_dialogs.show_axis,
      "name": parameter_dialogs.show_name, "drive": parameter_dialogs.show_drive}[which](w)
+
+
+def _apc_parameters(w) -> None:
+    from motiontool.ui.apc_parameters import show_apc_parameters
+
+    show_apc_parameters(w)
 
 
 def _download_all(w) -> None:
