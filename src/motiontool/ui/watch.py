@@ -4,7 +4,8 @@ Entries are program variables (the cross-reference of the debug build), array el
 elements of an array can be watched, DG L2467), axis process data and parameters.  The Value cell of a
 variable or a parameter can be edited: Enter writes the new value to the controller.  The pane does not talk
 to the controller itself: a reader `(kind, key) -> value` and a writer `(kind, key, text) -> error or None`
-are set by the debugger.
+are set by the debugger.  The reader is called on the pane's link-jobs thread (ui/link_jobs.py, issue 27 item 2):
+each entry is a request, ~60 ms at 9600 baud, and the poll every 250 ms stood the window still while it ran.
 """
 
 from __future__ import annotations
@@ -34,6 +35,8 @@ from PySide6.QtWidgets import (
     QVBoxLayout,
     QWidget,
 )
+
+from motiontool.ui.link_jobs import LinkJobs
 
 MAX_ARRAY_WATCH = 250
 HINT_ENTRIES = 12
@@ -122,6 +125,10 @@ class WatchPane(QDockWidget):
         self._reader: Callable[[str, str], object] | None = None
         self._writer: Callable[[str, str, str], str | None] | None = None
         self._filling = False
+        self.jobs = LinkJobs(self)
+        self._polling = False     # a poll is on the link-jobs thread: the next waits for it (a slow line)
+        self._again = False       # asked meanwhile (a value was written): poll once more when it is done
+        self._notes: dict[int, str] = {}    # a refused value's reason, by entry, for the next poll's text
         body = QWidget()
         layout = QVBoxLayout(body)
         layout.setContentsMargins(2, 2, 2, 2)
@@ -150,11 +157,9 @@ class WatchPane(QDockWidget):
         self._filling = True
         item.setToolTip(refused or "")
         self._filling = False
+        if refused:   # shown beside the controller's value once it has been read again
+            self._notes[id(entry)] = refused
         self.refresh()
-        if refused:
-            self._filling = True
-            item.setText(f"{item.text()}  ({refused})")
-            self._filling = False
 
     def set_variables(self, variables: list[str], arrays: list[tuple[str, int]]) -> None:
         self.variables, self.arrays = list(variables), list(arrays)
@@ -180,11 +185,13 @@ class WatchPane(QDockWidget):
         self.show()
 
     def remove(self, row: int) -> None:
+        self._notes.pop(id(self.entries[row]), None)
         del self.entries[row]
         self.table.removeRow(row)
         self.hint.setVisible(len(self.entries) > HINT_ENTRIES)
 
     def clear(self) -> None:
+        self._notes.clear()
         self.entries.clear()
         self.table.setRowCount(0)
         self.hint.hide()
@@ -193,23 +200,47 @@ class WatchPane(QDockWidget):
         return [self.table.item(r, 1).text() for r in range(self.table.rowCount())]
 
     def refresh(self) -> None:
-        if self._reader is None:
+        """Read every entry on the link-jobs thread; the values are shown when all have arrived."""
+        if self._reader is None or not self.entries:
             return
+        if self._polling:
+            self._again = True
+            return
+        self._polling = True
+        entries, reader = list(self.entries), self._reader
+        self.jobs.run(lambda: [_read(reader, entry) for entry in entries], lambda values: self._show(entries, values))
+
+    def _show(self, entries: list[WatchEntry], values) -> None:
+        self._polling = False
+        if isinstance(values, Exception):      # the job itself failed: every row says why
+            values = [values] * len(entries)
+        rows = {id(entry): row for row, entry in enumerate(self.entries)}   # entries removed meanwhile are gone
         self._filling = True
         try:
-            for row, entry in enumerate(self.entries):
+            for entry, value in zip(entries, values, strict=True):
+                row = rows.get(id(entry))
+                if row is None:
+                    continue
                 if self.table.state() == QAbstractItemView.State.EditingState and self.table.currentRow() == row:
                     continue  # the user is typing a new value here
-                try:
-                    text = format_watch(self._reader(entry.kind, entry.key), entry.fmt)
-                except Exception as exc:  # noqa: BLE001 - a failed read shows in its row, the others go on
-                    text = f"? {exc}"
-                self.table.item(row, 1).setText(text)
+                text = f"? {value}" if isinstance(value, Exception) else format_watch(value, entry.fmt)
+                note = self._notes.pop(id(entry), None)
+                self.table.item(row, 1).setText(f"{text}  ({note})" if note else text)
         finally:
             self._filling = False
+        if self._again:
+            self._again = False
+            self.refresh()
 
     def show_add_dialog(self) -> None:
         WatchAddDialog(self).exec()
+
+
+def _read(reader: Callable[[str, str], object], entry: WatchEntry) -> object:
+    try:
+        return reader(entry.kind, entry.key)
+    except Exception as exc:  # noqa: BLE001 - a failed read shows in its row, the others go on
+        return exc
 
 
 class WatchAddDialog(QDialog):
