@@ -162,6 +162,31 @@ def test_the_heartbeat_consumer_reports_a_silent_drive_and_the_link_comes_back_b
         link.close()
 
 
+def test_a_heartbeat_handled_late_does_not_make_a_stalled_node_alive(drive):
+    """A notifier thread that fell behind (a machine at load 15) handed over a beat the node had sent before it
+    stalled: counted at its handling it restored the link at once, and the test above failed ('assert not
+    link.alive'). A beat counts from when its frame was sent."""
+    link = CanopenLink("virtual", drive.channel, 1, heartbeat_ms=50, consumer_ms=300)
+    try:
+        connection = []
+        link.subscribe(lambda e: connection.append(e.text) if e.kind == "connection" else None)
+        assert wait_for(lambda: link._last_beat is not None)
+        hold = threading.Event()
+
+        def stall():
+            with drive.lock:
+                hold.wait(5.0)
+        threading.Thread(target=stall, daemon=True).start()
+        assert wait_for(lambda: connection, 2.0) and not link.alive
+        link.remote.nmt.on_heartbeat(0x701, b"\x05", time.time() - 0.5)   # sent 0.5 s ago, before the stall
+        time.sleep(0.3)                                                    # the watchdog looks every 50 ms
+        assert not link.alive and len(connection) == 1
+        hold.set()
+        assert wait_for(lambda: len(connection) == 2, 3.0) and link.alive
+    finally:
+        link.close()
+
+
 def test_node_scan_finds_the_drives_controllers(drive):
     assert scan("virtual", drive.channel, range(1, 10)) == [1, 2]
 

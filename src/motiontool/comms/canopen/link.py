@@ -73,6 +73,17 @@ def open_bus(interface: str, channel: str, bitrate: int | None = None, client: s
     return can.Bus(**kwargs)
 
 
+def _sent_at(stamp: float | None) -> float:
+    """A heartbeat's time on this process's monotonic clock: when its frame was stamped (wall time), else now. A
+    notifier that falls behind (a busy machine) hands over beats of a node that has since stopped; counted at their
+    handling they made a stalled node look alive (a heartbeat test failed so at load 15)."""
+    now = time.monotonic()
+    if not stamp:
+        return now
+    age = time.time() - stamp
+    return now - age if 0 <= age < 60 else now
+
+
 class CanopenLink(RemoteLink):
     kind = "canopen"
 
@@ -366,7 +377,7 @@ class CanopenLink(RemoteLink):
     # --- heartbeat consumer --------------------------------------------------------------------------------
     def _on_heartbeat(self, state: int) -> None:
         known = self._last_beat is not None
-        self._last_beat, self._state = time.monotonic(), state
+        self._last_beat, self._state = _sent_at(self.remote.nmt.timestamp), state
         self._beat_seen.set()
         if state == 0 and known:       # a boot-up of a node we knew: the drive lost what the link set up
             self._rebooted = True
