@@ -54,6 +54,7 @@ from motiontool.paramdb import ParameterError, database
 WRITES = (AK_WRITE_WORD, AK_WRITE_DWORD, AK_WRITE_WORD_EEPROM, AK_WRITE_DWORD_EEPROM)
 BUSY_AFTER_S = 0.02       # an extension request still running after this is answered BUSY
 MAX_CONNECTIONS = 16      # masters at once on the TCP listener (a serial converter takes a few); more are closed
+LINE_SLACK_S = 0.2         # what a paced connection may read ahead of its line before it waits
 GAP_S = 0.05              # a partial telegram older than this is dropped (a character time-out, as UARTs do)
 
 
@@ -221,6 +222,7 @@ class FcSocketListener(_Serving):
     def _serve(self, conn: socket.socket) -> None:
         slave = FcSlave(self.drive, self.baud)
         conn.settimeout(0.1)
+        line_free = 0.0      # a paced connection: when its line would have carried what was read so far
         try:
             while not self._stop.is_set():
                 try:
@@ -229,6 +231,13 @@ class FcSocketListener(_Serving):
                     continue
                 if not data:
                     return
+                if self.baud:
+                    # no faster than the line: a master that waits for answers never gets ahead of it, a client
+                    # flooding garbage is held back by TCP instead of taking the drive's cores from the others
+                    now = time.monotonic()
+                    line_free = max(line_free, now) + wire_time(len(data), self.baud)
+                    if line_free - now > LINE_SLACK_S:
+                        time.sleep(line_free - now - LINE_SLACK_S)
                 for answer in slave.on_bytes(data):
                     conn.sendall(answer)
         except OSError:
