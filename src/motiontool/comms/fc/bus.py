@@ -104,6 +104,7 @@ class FcBus:
                 bus = cls(settings, wrap(port) if wrap else port)
                 bus._wrap = wrap
                 cls._open[settings.key()] = bus
+            bus._reopen_at = 0.0   # a new link (Reconnect) tries a failed port at once, not after the others' wait
             bus.users += 1
             return bus
 
