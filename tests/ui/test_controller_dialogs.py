@@ -153,11 +153,13 @@ def test_the_name_dialog_refuses_lower_case_and_long_names_and_names_the_control
 
     def name(dialog):
         assert isinstance(dialog, NameDialog)
+        qtbot.waitUntil(dialog.name.isEnabled, timeout=5000)          # read on the link-jobs thread (I30)
         retype(qtbot, dialog.name, "conveyor1")
         click(qtbot, button(dialog, "OK"))
         seen["refused"] = (dialog.isVisible(), dialog.message.text())
         retype(qtbot, dialog.name, "FEEDER")
         click(qtbot, button(dialog, "OK"))
+        qtbot.waitUntil(lambda: not dialog.isVisible(), timeout=10_000)   # once written
 
     with answering(qtbot, name):
         window.actions_by_text["Name..."].trigger()

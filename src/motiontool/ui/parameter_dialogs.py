@@ -422,12 +422,14 @@ def _scroll(widget: QWidget) -> QScrollArea:
 
 
 class NameDialog(QDialog):
-    """Parameters → Name (DG 2870-2882): at most 8 characters, upper case."""
+    """Parameters → Name (DG 2870-2882): at most 8 characters, upper case. Read and written on the link-jobs
+    thread like Global and Axis (I30)."""
 
     def __init__(self, w) -> None:
         super().__init__(w)
         self.w = w
         self.setWindowTitle("Controller name")
+        self.jobs = LinkJobs(self)
         self.controller = QComboBox()
         for cid in interface_controllers(w):
             self.controller.addItem(f"Controller {cid}", cid)
@@ -444,16 +446,33 @@ class NameDialog(QDialog):
         buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Ok | QDialogButtonBox.StandardButton.Cancel)
         buttons.accepted.connect(self.accept)
         buttons.rejected.connect(self.reject)
+        self.ok = buttons.button(QDialogButtonBox.StandardButton.Ok)
         form.addRow(buttons)
         self._loaded = ""
         self.read()
 
+    def _busy(self, text: str | None) -> None:
+        for widget in (self.ok, self.controller, self.name):
+            widget.setEnabled(text is None)
+        self.name.setPlaceholderText(text or "")
+
     def read(self) -> None:
+        cid = self._shown
         try:
-            self._loaded = controller_link(self.w, self._shown).call("identify").get("name", "")
+            link = controller_link(self.w, cid)
         except (LinkError, ValueError) as exc:
-            self.message.setText(str(exc))
-            self._loaded = ""
+            self._read(exc)
+            return
+        self.name.clear()
+        self._busy("reading …")
+        self.jobs.run(lambda: link.call("identify").get("name", ""), self._read)
+
+    def _read(self, result) -> None:
+        self._busy(None)
+        if isinstance(result, Exception):
+            self.message.setText(str(result))
+            result = ""
+        self._loaded = result
         self.name.setText(self._loaded)
 
     @staticmethod
@@ -465,37 +484,53 @@ class NameDialog(QDialog):
             reasons.append("not upper case")
         return f"{name!r}: " + " and ".join(reasons) if reasons else None
 
-    def write(self) -> bool:
+    def _write(self, then: Callable[[], None]) -> None:
+        """A changed name to the shown controller on the link-jobs thread, then `then()`; a refusal says why."""
         name = self.name.text().strip()
         if name == self._loaded:
-            return True
+            then()
+            return
         refused = self.problem(name)
         if refused is None:
             try:
-                controller_link(self.w, self._shown).call("set_name", name=name)
+                link = controller_link(self.w, self._shown)
             except (LinkError, ValueError) as exc:
                 refused = str(exc)
         if refused:
-            self.message.setText(f"Refused: {refused}")
-            self.message.setStyleSheet("color: #a00000;")
-            self.name.setStyleSheet(REFUSED)
-            return False
-        self.w.messages.ide(f"Controller {self._shown}: named {name}")
+            self._refused(refused)
+            return
+        cid = self._shown
+        self._busy("writing …")
+        self.jobs.run(lambda: link.call("set_name", name=name), lambda result: self._written(cid, name, result, then))
+
+    def _written(self, cid: int, name: str, result, then: Callable[[], None]) -> None:
+        self._busy(None)
+        if isinstance(result, Exception):
+            self._refused(str(result))
+            return
+        self.w.messages.ide(f"Controller {cid}: named {name}")
         self._loaded = name
-        return True
+        then()
+
+    def _refused(self, why: str) -> None:
+        self.message.setText(f"Refused: {why}")
+        self.message.setStyleSheet("color: #a00000;")
+        self.name.setStyleSheet(REFUSED)
+        self.controller.blockSignals(True)   # a change of controller waits for a name the controller takes
+        self.controller.setCurrentIndex(self.controller.findData(self._shown))
+        self.controller.blockSignals(False)
 
     def accept(self) -> None:
-        if self.write():
-            super().accept()
+        self._write(lambda: super(NameDialog, self).accept())
 
     def _controller_changed(self) -> None:
-        if not self.write():
-            self.controller.blockSignals(True)
-            self.controller.setCurrentIndex(self.controller.findData(self._shown))
-            self.controller.blockSignals(False)
-            return
-        self._shown = self.controller.currentData()
-        self.read()
+        new = self.controller.currentData()
+
+        def switch() -> None:
+            self._shown = new
+            self.read()
+
+        self._write(switch)
 
 
 def show_global(w) -> None:
@@ -514,7 +549,9 @@ def show_axis(w) -> None:
 
 def show_name(w) -> None:
     if w.development.connect_default():
-        NameDialog(w).exec()
+        dialog = NameDialog(w)
+        dialog.exec()
+        dialog.deleteLater()
 
 
 def show_drive(w, parent=None) -> None:
