@@ -191,6 +191,7 @@ def test_watch_value_cells_can_be_edited_and_a_variable_and_a_parameter_are_adde
     qtbot.waitUntil(lambda: window.bridge.link.read_parameter("KPROP") == 55, timeout=3000)
     type_value(1, "-4")
     qtbot.waitUntil(lambda: "outside" in pane.table.item(1, 1).toolTip(), timeout=3000)   # refused, with why
+    assert "Watch: KPROP: " in window.messages.toPlainText()                                # and logged
     assert window.bridge.link.read_parameter("KPROP") == 55
     type_value(0, "1000")
     qtbot.waitUntil(lambda: window.bridge.link.call("read_variables", names=["i"])[0] == 1000, timeout=3000)

@@ -42,6 +42,7 @@ class Debugger(QObject):
         self.watch = WatchPane(window)
         self.watch.set_reader(self.read_watch)
         self.watch.set_writer(self.write_watch)
+        self.watch.refused.connect(lambda key, why: self.w.messages.ide(f"Watch: {key}: {why}"))
         self._watch_timer = QTimer(self, interval=WATCH_INTERVAL_MS, timeout=self.refresh_watch)
         window.bridge.status_changed.connect(self._status_changed)
 
@@ -171,7 +172,7 @@ class Debugger(QObject):
 
     def write_watch(self, kind: str, key: str, text: str) -> str | None:
         """A value typed into the Watch pane: a program variable or a parameter (checked against its range
-        first); None when written, else why not."""
+        first); None when written, else why not. Called on the pane's link-jobs thread: no widget here."""
         link = self._link()
         if link is None:
             return "not connected"
@@ -186,8 +187,7 @@ class Debugger(QObject):
             else:
                 return f"{key} is read from the controller and cannot be set"
         except (ValueError, KeyError, LinkError) as exc:
-            self.w.messages.ide(f"Watch: {key}: {exc}")
-            return str(exc)
+            return str(exc)             # the pane says it (and logs it through `refused`)
         return None
 
     def read_value(self, name: str) -> str | None:

@@ -4,8 +4,9 @@ Entries are program variables (the cross-reference of the debug build), array el
 elements of an array can be watched, DG L2467), axis process data and parameters.  The Value cell of a
 variable or a parameter can be edited: Enter writes the new value to the controller.  The pane does not talk
 to the controller itself: a reader `(kind, key) -> value` and a writer `(kind, key, text) -> error or None`
-are set by the debugger.  The reader is called on the pane's link-jobs thread (ui/link_jobs.py, issue 27 item 2):
-each entry is a request, ~60 ms at 9600 baud, and the poll every 250 ms stood the window still while it ran.
+are set by the debugger; the signal `refused(key, why)` reports a value the writer refused.  Reader and writer
+are called on the pane's link-jobs thread (ui/link_jobs.py, issue 27 item 2): each entry is a request, ~60 ms at
+9600 baud, and the poll every 250 ms stood the window still while it ran.
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from PySide6.QtCore import Qt
+from PySide6.QtCore import Qt, Signal
 from PySide6.QtGui import QContextMenuEvent, QKeyEvent
 from PySide6.QtWidgets import (
     QAbstractItemView,
@@ -115,6 +116,8 @@ class _Table(QTableWidget):
 
 
 class WatchPane(QDockWidget):
+    refused = Signal(str, str)    # (key, why): a typed value the controller or the check refused
+
     def __init__(self, parent=None) -> None:
         super().__init__("Watch", parent)
         self.setObjectName("watch")
@@ -152,13 +155,20 @@ class WatchPane(QDockWidget):
         """A value typed into a Value cell goes to the controller; a refusal shows in the cell's tooltip."""
         if self._filling or item.column() != 1 or self._writer is None:
             return
-        entry = self.entries[item.row()]
-        refused = self._writer(entry.kind, entry.key, item.text().strip())
-        self._filling = True
-        item.setToolTip(refused or "")
-        self._filling = False
-        if refused:   # shown beside the controller's value once it has been read again
-            self._notes[id(entry)] = refused
+        entry, text, writer = self.entries[item.row()], item.text().strip(), self._writer
+        self.jobs.run(lambda: writer(entry.kind, entry.key, text), lambda refused: self._written(entry, refused))
+
+    def _written(self, entry: WatchEntry, refused) -> None:
+        refused = str(refused) if isinstance(refused, Exception) else refused
+        row = next((r for r, e in enumerate(self.entries) if e is entry), None)
+        if row is not None:
+            self._filling = True
+            self.table.item(row, 1).setToolTip(refused or "")
+            self._filling = False
+            if refused:   # shown beside the controller's value once it has been read again
+                self._notes[id(entry)] = refused
+        if refused:
+            self.refused.emit(entry.key, refused)
         self.refresh()
 
     def set_variables(self, variables: list[str], arrays: list[tuple[str, int]]) -> None:
