@@ -147,24 +147,26 @@ def test_global_parameters_show_the_manuals_groups_and_cancel_writes_nothing(win
     assert window.bridge.link.read_parameter(seen["number"]) == seen["before"]
 
 
-def test_the_name_dialog_refuses_lower_case_and_long_names_and_names_the_controller(window, qtbot):
-    """DG 2870-2882: "Names cannot be longer than 8 characters and must be uppercase"."""
+def test_the_name_dialog_takes_upper_case_as_typed_and_refuses_a_long_name_before_ok(window, qtbot):
+    """DG 2870-2882: "Names cannot be longer than 8 characters and must be uppercase". Lower case becomes upper
+    case as it is typed; a ninth character is refused at once, with OK off (issue 23 item 11: both waited for OK)."""
     seen = {}
 
     def name(dialog):
         assert isinstance(dialog, NameDialog)
         qtbot.waitUntil(dialog.name.isEnabled, timeout=5000)          # read on the link-jobs thread (I30)
         retype(qtbot, dialog.name, "conveyor1")
+        seen["typed"] = (dialog.name.text(), dialog.message.text(), dialog.ok.isEnabled())
         click(qtbot, button(dialog, "OK"))
-        seen["refused"] = (dialog.isVisible(), dialog.message.text())
-        retype(qtbot, dialog.name, "FEEDER")
-        click(qtbot, button(dialog, "OK"))
+        seen["visible"] = dialog.isVisible()
+        retype(qtbot, dialog.name, "feeder")                          # its Return presses OK, now enabled
         qtbot.waitUntil(lambda: not dialog.isVisible(), timeout=10_000)   # once written
 
     with answering(qtbot, name):
         window.actions_by_text["Name..."].trigger()
-    visible, message = seen["refused"]
-    assert visible and "9 characters, at most 8 and not upper case" in message
+    text, message, ok = seen["typed"]
+    assert text == "CONVEYOR1" and "'CONVEYOR1': 9 characters, at most 8" in message and not ok
+    assert seen["visible"]
     assert window.bridge.link.call("identify")["name"] == "FEEDER"
 
 

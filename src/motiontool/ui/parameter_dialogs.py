@@ -438,6 +438,7 @@ class NameDialog(QDialog):
         self.controller.currentIndexChanged.connect(lambda _i: self._controller_changed())
         self.name = QLineEdit()
         self.name.setMaxLength(32)  # longer input is refused with the reason rather than cut silently
+        self.name.textEdited.connect(self._typed)
         self.message = QLabel("")
         form = QFormLayout(self)
         form.addRow("Controller:", self.controller)
@@ -474,6 +475,19 @@ class NameDialog(QDialog):
             result = ""
         self._loaded = result
         self.name.setText(self._loaded)
+
+    def _typed(self, text: str) -> None:
+        """As it is typed: upper case (DG 2872 "must be uppercase"), and a name too long says so at once with OK
+        off, rather than at OK (issue 23 item 11)."""
+        if text != text.upper():
+            position = self.name.cursorPosition()
+            self.name.setText(text.upper())
+            self.name.setCursorPosition(position)
+        refused = self.problem(self.name.text().strip())
+        self.message.setText(f"Refused: {refused}" if refused else "")
+        self.message.setStyleSheet("color: #a00000;" if refused else "")
+        self.name.setStyleSheet(REFUSED if refused else "")
+        self.ok.setEnabled(refused is None)
 
     @staticmethod
     def problem(name: str) -> str | None:
