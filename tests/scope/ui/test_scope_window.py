@@ -256,6 +256,10 @@ def test_open_scope_from_the_main_window(qtbot, tmp_path):
         click(qtbot, scope, scope.start_action)
         qtbot.waitUntil(lambda: len(scope.scope.curves[0].buffer) > 20, timeout=5000)
         click(qtbot, scope, scope.stop_action)
+        samples = len(scope.scope.curves[0].buffer)
+        with answering(qtbot, button_reply(QMessageBox.StandardButton.Cancel)) as answers:
+            scope.delete_action.trigger()  # Delete data asks too (issue 23 item 11); Cancel keeps the samples
+        assert answers.seen == ["QMessageBox 'Oscilloscope'"] and len(scope.scope.curves[0].buffer) == samples
         with answering(qtbot, button_reply(QMessageBox.StandardButton.Discard)) as answers:
             scope.close()  # an unsaved recording: the user is asked (issue 23 item 9)
         assert answers.seen == ["QMessageBox 'Oscilloscope'"] and not scope.isVisible()

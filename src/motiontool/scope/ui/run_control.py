@@ -132,6 +132,10 @@ class RunControl:
         self._update_title()
 
     def delete_data(self) -> None:
+        """Delete data: samples not saved yet are asked for first, Save / Discard / Cancel as on closing (issue 23
+        item 11: they went without a word); saved ones can be loaded again."""
+        if not self.confirm_unsaved():
+            return
         self.scope.clear_data()
         self.redraw()
 
