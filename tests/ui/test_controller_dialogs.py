@@ -345,3 +345,22 @@ def test_download_all_with_verify_only_reports_a_controller_whose_program_differ
         window.actions_by_text["Download all"].trigger()
     assert "Controller 1: no program 0" in seen["log"] and "Failed for controllers: 1" in seen["log"]
     assert window.controllers.link(1).call("list_programs") == []
+
+
+def test_global_parameters_show_each_description_whole(window, qtbot):
+    """Issue 23 item 11: "Global Parameters labels truncated" - cut at 60 characters, 33-61's lost the end of
+    '(input 11; visible when IOMODE = 0)'. Each label holds the whole description, wrapped."""
+    from PySide6.QtWidgets import QLabel
+
+    seen = {}
+
+    def look(dialog):
+        assert isinstance(dialog, ParametersDialog)
+        qtbot.waitUntil(lambda: any("[33-61" in label.text() for label in dialog.findChildren(QLabel)), timeout=5000)
+        label = next(label for label in dialog.findChildren(QLabel) if "[33-61" in label.text())
+        seen["text"], seen["wraps"] = label.text(), label.wordWrap()
+        click(qtbot, button(dialog, "Cancel"))
+
+    with answering(qtbot, look):
+        window.actions_by_text["Global..."].trigger()
+    assert "(input 11; visible when IOMODE = 0) [33-61 I_FUNCTION_11]" in seen["text"] and seen["wraps"]

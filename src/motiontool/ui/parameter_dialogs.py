@@ -80,6 +80,9 @@ def _text(p: Parameter, value) -> str:
     return str(value)
 
 
+LABEL_WIDTH = 480   # px: most descriptions on one line, the longest on two
+
+
 class ParameterField:
     """One parameter's input: a combo box for an enumeration, else a line edit; knows its state."""
 
@@ -99,6 +102,8 @@ class ParameterField:
                 self.widget.addItem(f"{number}: {text}", number)
             self.widget.currentIndexChanged.connect(lambda _i: self._typed())
             self.widget.setMaximumWidth(280)  # an option's long text must not push the field out of view
+            # the open list shows every option whole, however narrow the field
+            self.widget.view().setMinimumWidth(self.widget.view().sizeHintForColumn(0) + 24)
         else:
             self.widget = QLineEdit()
             self.widget.setMaximumWidth(160)
@@ -247,7 +252,10 @@ class ParametersDialog(QDialog):
         new = {}
         for p in parameters:
             field = new[p.number] = ParameterField(p, self._field_changed)
-            label = QLabel(f"{p.description[:60]} [{p.label}]" + (f" ({p.unit})" if p.unit else ""))
+            # the whole description, wrapped: cut at 60 characters it lost its end mid-word (issue 23 item 11)
+            label = QLabel(f"{p.description} [{p.label}]" + (f" ({p.unit})" if p.unit else ""))
+            label.setWordWrap(True)
+            label.setMinimumWidth(LABEL_WIDTH)   # a wrapped label would otherwise take the narrowest column
             label.setToolTip(p.description)
             form.addRow(label, field.widget)
         self.fields.update(new)
