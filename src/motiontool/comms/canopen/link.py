@@ -129,7 +129,9 @@ class CanopenLink(RemoteLink):
             bus = open_bus(self.interface, self.channel, self.bitrate, self.client)
         except (can.CanError, OSError, ValueError) as exc:
             raise ConnectionLost(f"cannot open {self.interface}:{self.channel}: {exc}") from None
-        self.network = canopen.Network(bus)
+        self.network = network = canopen.Network(bus)
+        if isinstance(bus, SlcanSocketBus):     # only what the link subscribes to (its node, its PDOs)
+            bus.wanted = lambda can_id, extended: not extended and can_id in network.subscribers
         self.network.notifier = can.Notifier(bus, self.network.listeners, 0.5)
         self.remote = canopen.RemoteNode(self.node_id, self.od)
         if self.sdo_channel != 1:

@@ -23,6 +23,7 @@ import sys
 import threading
 import time
 from collections import deque
+from collections.abc import Callable
 
 import can
 
@@ -34,6 +35,12 @@ READ_SIZE = 65536
 MAX_QUEUED = 1 << 20        # bytes waiting for one client (~45 000 frames) before its frames are dropped
 MAX_CLIENTS = 16            # adapters' clients at once; more are closed at once
 MAX_LINE = 64               # the longest slcan line is 30 characters (T, 8 id, dlc, 16 data, 4 stamp)
+# A client's lines (frames, commands) are read no faster than a CAN bus carries frames: 1 Mbit/s full of 8-byte
+# frames (~135 bits) is ~7 400 a second (shorter frames are faster on a real bus; no master needs that here). A client flooding frames or garbage lines is held
+# back by TCP instead of taking the drive's cores from the other clients; a master that waits for answers never
+# reaches it. Bytes without a CR are not lines: they are dropped at MAX_LINE, at little cost.
+LINES_S = 7_500
+READ_SLACK_S = 0.2
 
 
 def open_local_bus(interface: str, channel: str, ids: set[int] | None = None) -> can.BusABC:
@@ -128,6 +135,7 @@ class _Client:
 
     def serve(self) -> None:
         buffer = b""
+        bus_free = 0.0       # when the bus would have carried what this client sent so far
         try:
             while self.alive and not self.server.closed:
                 chunk = self.sock.recv(READ_SIZE)
@@ -142,6 +150,10 @@ class _Client:
                     answers.append(ERROR)
                 if answers:
                     self.write(b"".join(answers))
+                now = time.monotonic()     # then the bus is busy carrying what was read
+                bus_free = max(bus_free, now) + chunk.count(b"\r") / LINES_S
+                if bus_free - now > READ_SLACK_S:
+                    time.sleep(bus_free - now - READ_SLACK_S)
         except OSError:
             pass
         finally:
@@ -302,6 +314,9 @@ class SlcanSocketBus(can.BusABC):
         self._buffer = b""
         self._lines: deque[str] = deque()
         self._send_lock = threading.Lock()
+        # (id, extended) -> bool: frames nobody listens to are skipped before they are parsed (a busy bus, a babbling
+        # node: the link's SDO thread keeps its core)
+        self.wanted: Callable[[int, bool], bool] | None = None
         self.channel_info = f"slcan {channel}"
         self._write(b"C\rO\r")
         super().__init__(channel=channel, **kwargs)
@@ -322,7 +337,10 @@ class SlcanSocketBus(can.BusABC):
         while True:
             while self._lines:
                 line = self._lines.popleft()
-                msg = parse_frame(line) if line[:1] in ("t", "T", "r", "R") else None
+                head = line[:1]
+                if head not in ("t", "T", "r", "R") or not self._is_wanted(line, head in ("T", "R")):
+                    continue
+                msg = parse_frame(line)
                 if msg is not None:
                     msg.timestamp = time.time()
                     msg.channel = self.channel_info
@@ -331,6 +349,15 @@ class SlcanSocketBus(can.BusABC):
             self._read(left)
             if not self._lines and deadline is not None and time.monotonic() >= deadline:
                 return None, False
+
+    def _is_wanted(self, line: str, extended: bool) -> bool:
+        if self.wanted is None:
+            return True
+        try:
+            can_id = int(line[1:9] if extended else line[1:4], 16)
+        except ValueError:
+            return True        # parse_frame refuses it
+        return self.wanted(can_id, extended)
 
     def _read(self, timeout: float | None) -> bool:
         """Read what has arrived (waiting at most `timeout`); True when lines came. The wait is a select, not a
