@@ -116,8 +116,9 @@ def test_pause_then_start_keeps_the_data_and_marks_the_pause(qtbot, link, make):
 
 
 def test_single_shot_at_1_ms_uploads_exactly_the_configured_count(qtbot, link, make, tmp_path):
-    """DG 5287-5324, 5867-5869 / ide-spec S22: the recording dialog, nothing drawn while recording, Stop uploads
-    exactly the fixed count of sets at the sample interval."""
+    """DG 5287-5324, 5867-5869 / ide-spec S22: the recording dialog, nothing drawn while recording; a recording
+    that stops when full has ended then, and "when the run ends, the Oscilloscope will upload" (DG 5434) exactly
+    the fixed count of sets at the sample interval, without Stop (issue 23 item 11: it waited for Stop)."""
     w = make(link, "single_shot")
     group = w.scope.group("Test Group (Single Shot)")
     dialog = RecordingDialog(group, w)
@@ -131,11 +132,11 @@ def test_single_shot_at_1_ms_uploads_exactly_the_configured_count(qtbot, link, m
         w.add_signal_curve(signal, group=group.name)
     start_program(link, POSA)
     click(qtbot, w, w.start_action)
-    run_for(w, link, 2000)
+    run_for(w, link, 700)
     assert all(len(c.buffer) == 0 for c in w.scope.curves)   # nothing drawn while recording
-    w._tick(), w._tick(), w._tick(), w._tick()
-    assert "[recording 750/750]" in w.windowTitle()
-    click(qtbot, w, w.stop_action)
+    assert "[recording " in w.windowTitle()
+    run_for(w, link, 1300)                                    # full at 750 ms: uploaded without Stop
+    assert not w.single_shot.running and "[recording" not in w.windowTitle()
     for c in w.scope.curves:
         t, _ = c.raw()
         assert t.size == 750 and set(np.diff(t)) == {1.0}

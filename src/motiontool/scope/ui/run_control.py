@@ -155,6 +155,10 @@ class RunControl:
                 except LinkError:
                     self._recording_status = None
                 self._update_title()
+                if self._recording_status is not None and not self._recording_status.get("running", True):
+                    # full ('stop when full'): the run has ended, and "when the run ends, the Oscilloscope will
+                    # upload" (DG 5434) - it waited for Stop (issue 23 item 11)
+                    self.stop()
             return
         if self.free_run is not None and not self.free_run.running and not self.polling.running:
             self._finish_run()  # a single triggered capture is complete
