@@ -401,3 +401,24 @@ def test_grid_column_gives_a_curve_the_left_or_right_axis(qtbot, link, make):
     assert item.text(GRID) == "L" and w.list.item_for("1: APOS").text(GRID) == "R"
     assert w.list.item_for("1: CPOS").text(GRID) == "↑R"
     assert w.chart.left_axis.labelText.startswith("1: TRACKERR")
+
+
+@pytest.mark.parametrize("variant, group", [("single_shot", "Test Group (Single Shot)"),
+                                            ("free_run", "Test Group (Free Run)")])
+def test_add_curve_offers_the_group_the_variant_records_with(qtbot, link, make, variant, group):
+    """Issue 23 item 11: Add Curve in the Single Shot scope offered the Free Run group first (DG 5428: Free Run
+    groups only in the Free Run scope, Single Shot groups only in the Single Shot scope)."""
+    from motiontool.scope.ui.dialogs import AddCurveDialog
+
+    w = make(link, "free_run")
+    w.set_variant(variant)
+    seen = {}
+
+    def look(dialog):
+        assert isinstance(dialog, AddCurveDialog)
+        seen["group"] = dialog.method.currentText()
+        dialog.reject()
+
+    with answering(qtbot, look):
+        w.add_action.trigger()
+    assert seen["group"] == group

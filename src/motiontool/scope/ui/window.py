@@ -300,6 +300,11 @@ class ScopeWindow(RunControl, QMainWindow):
         """Add Curve; a dialog given here is already filled in (scripted use) and counts as accepted."""
         if dlg is None:
             dlg = AddCurveDialog([g.name for g in self.scope.groups], [c.name for c in self.scope.curves], self)
+            # the group the variant records with, not the first one (Single Shot offered Free Run's, issue 23)
+            own = {"free_run": "Test Group (Free Run)", "single_shot": "Test Group (Single Shot)",
+                   "polling": "Polled (no group)"}.get(self.scope.variant)
+            if own is not None and dlg.method.findText(own) >= 0:
+                dlg.method.setCurrentText(own)
             if not dlg.exec():
                 return
         try:
