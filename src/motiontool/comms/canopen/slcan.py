@@ -6,7 +6,8 @@ bridge to the simulated controllers sit on it (server.py). Every client that has
 more node on that bus: what it sends reaches the channel and the other clients, what the others send reaches it.
 
 Lawicel commands served (each ends with CR; OK is CR, an error BEL): ``O`` / ``L`` open (``L`` listen only),
-``C`` close, ``S0``-``S8`` and ``sxxyy`` bit rate (accepted, the bus has none), ``V``/``v`` version, ``N`` serial
+``C`` close, ``S0``-``S8`` and ``sxxyy`` bit rate (accepted; a client's lines are read as a 1 Mbit/s bus carries
+frames, LINES_S), ``V``/``v`` version, ``N`` serial
 number, ``F`` status flags, ``Z0``/``Z1`` time stamps, ``M``/``m`` acceptance filter (accepted, everything passes),
 ``tiiil…`` / ``Tiiiiiiiil…`` data frames and ``riiil`` / ``Riiiiiiiil`` remote frames (answered ``z``/``Z`` as an
 adapter confirms a transmission). Frames to a client: ``tiiil<data>`` CR (``Z1`` appends a 16-bit ms stamp).
@@ -36,9 +37,10 @@ MAX_QUEUED = 1 << 20        # bytes waiting for one client (~45 000 frames) befo
 MAX_CLIENTS = 16            # adapters' clients at once; more are closed at once
 MAX_LINE = 64               # the longest slcan line is 30 characters (T, 8 id, dlc, 16 data, 4 stamp)
 # A client's lines (frames, commands) are read no faster than a CAN bus carries frames: 1 Mbit/s full of 8-byte
-# frames (~135 bits) is ~7 400 a second (shorter frames are faster on a real bus; no master needs that here). A client flooding frames or garbage lines is held
-# back by TCP instead of taking the drive's cores from the other clients; a master that waits for answers never
-# reaches it. Bytes without a CR are not lines: they are dropped at MAX_LINE, at little cost.
+# frames (~135 bits) is ~7 400 a second (shorter frames are faster on a real bus; no master needs that here). A
+# client flooding frames or garbage lines is held back by TCP instead of taking the drive's cores from the other
+# clients; a master that waits for answers never reaches it. Bytes without a CR are not lines: they are dropped at
+# MAX_LINE, at little cost (decision N53).
 LINES_S = 7_500
 READ_SLACK_S = 0.2
 
