@@ -19,6 +19,12 @@
 // real axis (APOS) still trails by a few counts at that moment; a short
 // DELAY lets the position loop settle before we look at APOS.
 
+// An earlier program may have left the axis anywhere and a temporary zero
+// set (the controller keeps both): count this program's positions from
+// where the axis stands now, without touching the machine's zero and
+// software limits (SETORIGIN is relative to the real zero, CR 3984-3999).
+RSTORIGIN
+SETORIGIN APOS
 VEL 60          // 60 % of VELMAX: fast, but leaves headroom for the loop
 ACC 30          // gentle start ...
 DEC 50          // ... and a firmer stop: braking is usually less critical

@@ -1,8 +1,8 @@
 // Title: Homing on a reference switch, then working moves
 // Shows: SET I_FUNCTION_1, HOME_VEL, HOME_TYPE, HOME_OFFSET, HOME, POSA, APOS
-// Run: motiontool run 04_homing.m --seconds 20
-// Test-seconds: 20
-// Expect: before HOME: APOS 0, switch 0
+// Run: motiontool run 04_homing.m --seconds 30
+// Test-seconds: 30
+// Expect: before HOME: 5000 qc below the cam, switch 0
 // Expect: after HOME:  APOS 3, switch 0
 // Expect: loading station at -15000
 // Expect: work station at    -5000
@@ -26,7 +26,39 @@ SET HOME_RAMP 20
 SET HOME_TYPE 1         // switch edge only, no index pulse
 SET HOME_OFFSET -2000   // zero lies 2000 qc before the switch edge
 
-PRINT "before HOME: APOS ", APOS, ", switch ", IN 1
+// A machine that has been running may stand below the cam, on it or
+// above it, and HOME searches in one direction only (the sign of
+// HOME_VEL). So first find the cam in widening sweeps, down and up,
+// then its lower edge, and start HOME from below it as after power-up:
+// the same edge, the same zero, wherever the axis was.
+RSTORIGIN               // positions of the machine, not of a fixture
+VEL 100
+ACC 100
+DEC 100
+NOWAIT ON
+span = 40000
+dir = -1
+WHILE IN 1 == 0 DO
+    POSR (dir * span)
+    WHILE IN 1 == 0 AND (AXEND & 2) DO
+        DELAY 1
+    ENDWHILE
+    dir = -dir
+    span = span * 2
+ENDWHILE
+CVEL -50                // on the cam: down through it
+CSTART
+down_on_cam = 0
+REPEAT                  // (coming up, the axis may brake beyond the cam)
+    IF IN 1 AND AVEL < 0 THEN
+        down_on_cam = 1
+    ENDIF
+    DELAY 1
+UNTIL down_on_cam AND IN 1 == 0
+low = APOS              // where the cam begins
+NOWAIT OFF
+POSA (low - 5000)
+PRINT "before HOME: ", low - CPOS, " qc below the cam, switch ", IN 1
 HOME
 DELAY 50                // let the loop settle on the new zero
 PRINT "after HOME:  APOS ", APOS, ", switch ", IN 1

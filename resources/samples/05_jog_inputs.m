@@ -1,7 +1,7 @@
 // Title: Jogging with push buttons
 // Shows: WAITI, IN, CVEL, CSTART, CSTOP, WHILE, IF/ELSEIF
-// Run: motiontool run 05_jog_inputs.m --seconds 10 --input 1=1@500 --input 1=0@1500 --input 2=1@2500 --input 2=0@3000 --input 3=1@4000
-// Test-inputs: 1=1@500 1=0@1500 2=1@2500 2=0@3000 3=1@4000
+// Run: motiontool run 05_jog_inputs.m --seconds 10 --input 1=0@0 --input 2=0@0 --input 3=0@0 --input 1=1@500 --input 1=0@1500 --input 2=1@2500 --input 2=0@3000 --input 3=1@4000
+// Test-inputs: 1=0@0 2=0@0 3=0@0 1=1@500 1=0@1500 2=1@2500 2=0@3000 3=1@4000
 // Test-seconds: 10
 // Expect: waiting for a jog button
 // Expect: jog mode on
@@ -21,6 +21,12 @@
 // Speed mode suits jogging: the axis moves as long as the button is
 // held and stops with the DEC ramp when it is released.
 
+// An earlier program may have left the axis anywhere and a temporary zero
+// set (the controller keeps both): count this program's positions from
+// where the axis stands now, without touching the machine's zero and
+// software limits (SETORIGIN is relative to the real zero, CR 3984-3999).
+RSTORIGIN
+SETORIGIN APOS
 ACC 100
 DEC 100
 jog = 10                        // jog speed, % of VELMAX

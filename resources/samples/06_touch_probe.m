@@ -1,7 +1,7 @@
 // Title: Touch probe: stop a fixed distance after a sensor edge
 // Shows: ON INT, CVEL, CSTART, POSR, WAITAX, SUBMAINPROG, SUBPROG
-// Run: motiontool run 06_touch_probe.m --seconds 10 --input 4=1@1200 --input 4=0@1300
-// Test-inputs: 4=1@1200 4=0@1300
+// Run: motiontool run 06_touch_probe.m --seconds 10 --input 4=0@0 --input 4=1@1200 --input 4=0@1300
+// Test-inputs: 4=0@0 4=1@1200 4=0@1300
 // Test-seconds: 10
 // Expect: searching ...
 // Expect: edge at 19797, stopped at 22794
@@ -19,6 +19,12 @@
 // an interrupt handler, so WAITAX is needed if the handler must not
 // return before the target is reached.
 
+// An earlier program may have left the axis anywhere and a temporary zero
+// set (the controller keeps both): count this program's positions from
+// where the axis stands now, without touching the machine's zero and
+// software limits (SETORIGIN is relative to the real zero, CR 3984-3999).
+RSTORIGIN
+SETORIGIN APOS
 ON INT 4 GOSUB probe          // rising edge of input 4
 
 // The braking distance v*v/(2*DEC) must fit into the 3000 qc, otherwise

@@ -22,6 +22,12 @@
 // window needs four entries: on/off going up and on/off coming back.
 // A GOSUB form counts the upward passes, to show both kinds side by side.
 
+// An earlier program may have left the axis anywhere and a temporary zero
+// set (the controller keeps both): count this program's positions from
+// where the axis stands now, without touching the machine's zero and
+// software limits (SETORIGIN is relative to the real zero, CR 3984-3999).
+RSTORIGIN
+SETORIGIN APOS
 ON +APOS 8000 SETOUT 2        // going up: open at 8000 ...
 ON +APOS 14000 SETOUT -2      // ... close at 14000
 ON -APOS 14000 SETOUT 2       // coming back: open at 14000 ...

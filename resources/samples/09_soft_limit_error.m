@@ -32,6 +32,13 @@ SET SWPOSLIMACT 1             // switch the positive limit on
 VEL 50
 ACC 50
 DEC 50
+// The software limits are positions of the machine: HOME sets its zero
+// and a DEFORIGIN moves the limits along (DG 10158), a SETORIGIN does
+// not. An earlier program may have left the axis anywhere and a
+// temporary zero set: start from the machine zero, inside the range.
+RSTORIGIN
+POSA 0
+DELAY 200                     // settle, as after power-up
 errors = 0
 
 table_pos = 30000

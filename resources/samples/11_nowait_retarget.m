@@ -20,15 +20,23 @@
 // set-point overshoot and come back.
 //
 // AXEND bit value 2 is set while a positioning move is active and
-// bit value 1 once the target has been reached.
+// bit value 1 once the target has been reached. Bit value 128 (ready
+// again after an ERRCLR or MOTOR STOP, CR 316-317) stays from whatever
+// an earlier program did, so the prints leave it out (& 127).
 
+// An earlier program may have left the axis anywhere and a temporary zero
+// set (the controller keeps both): count this program's positions from
+// where the axis stands now, without touching the machine's zero and
+// software limits (SETORIGIN is relative to the real zero, CR 3984-3999).
+RSTORIGIN
+SETORIGIN APOS
 ACC 50
 DEC 50
 VEL 20
 NOWAIT ON
 
 POSA 100000                   // a long move, started in the background
-PRINT "started, AXEND ", AXEND
+PRINT "started, AXEND ", AXEND & 127
 
 step = 0
 REPEAT
@@ -45,7 +53,7 @@ REPEAT
     DELAY 5                   // the main loop is free for other work
 UNTIL (AXEND & 2) == 0
 
-PRINT "arrived at ", CPOS, ", AXEND ", AXEND
+PRINT "arrived at ", CPOS, ", AXEND ", AXEND & 127
 
 // NOWAIT also lets several things happen at once: start the way back,
 // switch a lamp and only then wait for the axis.

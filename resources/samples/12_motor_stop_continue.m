@@ -1,7 +1,7 @@
 // Title: Pausing a move with MOTOR STOP and resuming it with CONTINUE
 // Shows: MOTOR STOP, CONTINUE, WAITI, IN, AXEND, NOWAIT, WAITAX
-// Run: motiontool run 12_motor_stop_continue.m --seconds 15 --input 5=1@1500 --input 5=0@3000
-// Test-inputs: 5=1@1500 5=0@3000
+// Run: motiontool run 12_motor_stop_continue.m --seconds 15 --input 5=0@0 --input 5=1@1500 --input 5=0@3000
+// Test-inputs: 5=0@0 5=1@1500 5=0@3000
 // Test-seconds: 15
 // Expect: door open: held at 51200, AXEND 75
 // Expect: door closed, resuming
@@ -17,8 +17,16 @@
 // standstill ourselves: AXEND bit value 8 appears once the axis is held
 // by MOTOR STOP. The manual lists the whole pattern of a paused move:
 // 1 standing still + 2 positioning still pending + 8 STOP state + 64
-// (the manual's "controller off" bit) = 75.
+// (the manual's "controller off" bit) = 75. Bit value 128 (ready again
+// after MOTOR STOP or ERRCLR, CR 316-317) may stay from an earlier
+// program, so the prints leave it out (& 127).
 
+// An earlier program may have left the axis anywhere and a temporary zero
+// set (the controller keeps both): count this program's positions from
+// where the axis stands now, without touching the machine's zero and
+// software limits (SETORIGIN is relative to the real zero, CR 3984-3999).
+RSTORIGIN
+SETORIGIN APOS
 VEL 40
 ACC 40
 DEC 80
@@ -31,7 +39,7 @@ WHILE (AXEND & 2) DO
         WHILE (AXEND & 8) == 0 DO  // still braking
             DELAY 1
         ENDWHILE
-        PRINT "door open: held at ", CPOS, ", AXEND ", AXEND
+        PRINT "door open: held at ", CPOS, ", AXEND ", AXEND & 127
         WAITI 5 OFF                // wait for the door to close
         PRINT "door closed, resuming"
         CONTINUE                   // same target, same VEL/ACC/DEC
@@ -39,4 +47,4 @@ WHILE (AXEND & 2) DO
     DELAY 2
 ENDWHILE
 WAITAX
-PRINT "target reached: ", CPOS, ", AXEND ", AXEND
+PRINT "target reached: ", CPOS, ", AXEND ", AXEND & 127

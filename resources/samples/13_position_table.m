@@ -23,6 +23,12 @@
 
 DIM station[5]
 
+// An earlier program may have left the axis anywhere and a temporary zero
+// set (the controller keeps both): count this program's positions from
+// where the axis stands now, without touching the machine's zero and
+// software limits (SETORIGIN is relative to the real zero, CR 3984-3999).
+RSTORIGIN
+SETORIGIN APOS
 IF station[1] == 0 AND station[5] == 0 THEN
     station[1] = 4000
     station[2] = 12500

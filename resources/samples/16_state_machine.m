@@ -1,7 +1,7 @@
 // Title: A machine cycle as a SWITCH state machine
 // Shows: SWITCH/CASE/DEFAULT/BREAK/ENDSWITCH, #define constants, NOWAIT, AXEND, TIME
-// Run: motiontool run 16_state_machine.m --seconds 20 --input 1=1@300 --input 1=0@400
-// Test-inputs: 1=1@300 1=0@400
+// Run: motiontool run 16_state_machine.m --seconds 20 --input 1=0@0 --input 1=1@300 --input 1=0@400
+// Test-inputs: 1=0@0 1=1@300 1=0@400
 // Test-seconds: 20
 // Expect: 301 ms: start pressed
 // Expect: 3161 ms: cycle 1 complete
@@ -27,6 +27,12 @@
 #define ST_DONE 4
 
 t0 = TIME - 1                 // the start (TIME counts from power-up; line 1 runs at start + 1 ms)
+// An earlier program may have left the axis anywhere and a temporary zero
+// set (the controller keeps both): count this program's positions from
+// where the axis stands now, without touching the machine's zero and
+// software limits (SETORIGIN is relative to the real zero, CR 3984-3999).
+RSTORIGIN
+SETORIGIN APOS
 VEL 60
 ACC 60
 DEC 60

@@ -25,6 +25,12 @@
 //    computes them with 32-bit precision, so round before comparing.
 
 double r, l, a, x, x0
+// An earlier program may have left the axis anywhere and a temporary zero
+// set (the controller keeps both): count this program's positions from
+// where the axis stands now, without touching the machine's zero and
+// software limits (SETORIGIN is relative to the real zero, CR 3984-3999).
+RSTORIGIN
+SETORIGIN APOS
 r = 40.0                         // crank radius, mm
 l = 150.0                        // connecting rod, mm
 x0 = r + l                       // slider at crank angle 0 (top)

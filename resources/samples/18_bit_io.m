@@ -1,7 +1,7 @@
 // Title: Bits and bytes of the I/O word
 // Shows: INB, OUTB, .n bit selector, .b1 byte selector, bit assignment, &, |, <<, >>, ~
-// Run: motiontool run 18_bit_io.m --seconds 5 --input 1=1@0 --input 3=1@0 --input 8=1@0 --input 2=1@600 --input 3=0@600
-// Test-inputs: 1=1@0 3=1@0 8=1@0 2=1@600 3=0@600
+// Run: motiontool run 18_bit_io.m --seconds 5 --input 1=1@0 --input 2=0@0 --input 3=1@0 --input 4=0@0 --input 5=0@0 --input 6=0@0 --input 7=0@0 --input 8=1@0 --input 2=1@600 --input 3=0@600
+// Test-inputs: 1=1@0 2=0@0 3=1@0 4=0@0 5=0@0 6=0@0 7=0@0 8=1@0 2=1@600 3=0@600
 // Test-seconds: 5
 // Expect: inputs 133: code 5, enable 1, bit 3 1
 // Expect:   outputs 81 = code 5, flags 1

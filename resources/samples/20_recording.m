@@ -34,6 +34,17 @@
 
 DIM rec[150]
 
+// An earlier program may have left the axis anywhere and a temporary zero
+// set (the controller keeps both): count this program's positions from
+// where the axis stands now, without touching the machine's zero and
+// software limits (SETORIGIN is relative to the real zero, CR 3984-3999).
+RSTORIGIN
+SETORIGIN APOS
+// The recorded APOS and CPOS (SYSVAR 4097/4098) are machine positions,
+// which SETORIGIN does not shift (see 23_user_zero.m): the printout
+// subtracts where they stood at the start.
+start_a = SYSVAR[4097]
+start_c = SYSVAR[4098]
 TESTSETP 20 4097 4098 4102 rec   // every 20 ms: APOS, CPOS, TRACKERR
 VEL 50
 ACC 40
@@ -45,7 +56,8 @@ DELAY 200                        // be sure the last samples are taken
 n = 1
 WHILE n <= 50 DO
     k = (n - 1) * 3
-    PRINT "t = ", (n - 1) * 20, " ms: APOS ", rec[k + 1], ", CPOS ", rec[k + 2], ", TRACKERR ", rec[k + 3]
+    PRINT "t = ", (n - 1) * 20, " ms: APOS ", rec[k + 1] - start_a;
+    PRINT ", CPOS ", rec[k + 2] - start_c, ", TRACKERR ", rec[k + 3]
     n = n + 10                   // every tenth sample is enough here
 ENDWHILE
 

@@ -19,6 +19,12 @@
 // the time and the largest tracking error. Try other JERKMIN values
 // with --set JERKMIN=... and compare.
 
+// An earlier program may have left the axis anywhere and a temporary zero
+// set (the controller keeps both): count this program's positions from
+// where the axis stands now, without touching the machine's zero and
+// software limits (SETORIGIN is relative to the real zero, CR 3984-3999).
+RSTORIGIN
+SETORIGIN APOS
 VEL 80
 ACC 60
 DEC 60

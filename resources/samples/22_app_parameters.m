@@ -22,6 +22,12 @@
 // the parameter is linked. The program also writes a piece counter to
 // 19-01, so the operator sees the progress on the LCP.
 
+// An earlier program may have left the axis anywhere and a temporary zero
+// set (the controller keeps both): count this program's positions from
+// where the axis stands now, without touching the machine's zero and
+// software limits (SETORIGIN is relative to the real zero, CR 3984-3999).
+RSTORIGIN
+SETORIGIN APOS
 LINKGPAR 1900 "Feed length qc" 1000 40000 0
 LINKGPAR 1901 "Pieces done" 0 1000000 0
 LINKGPAR 1902 "Batch size" 1 100 0

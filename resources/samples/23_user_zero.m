@@ -27,6 +27,7 @@ VEL 60
 ACC 60
 DEC 60
 
+RSTORIGIN                       // machine positions (an earlier program may have left a temporary zero)
 POSA 10000                      // "jog" to the reference mark
 DELAY 200                       // settle: DEFORIGIN takes APOS as it is
 DEFORIGIN

@@ -1,7 +1,7 @@
 // Title: Measuring product length with rising and falling edge interrupts
 // Shows: ON INT +n, ON INT -n, CVEL, CSTART, CSTOP, DISABLE INT/ENABLE INT, DIM
-// Run: motiontool run 24_product_length.m --seconds 10 --input 6=1@400 --input 6=0@700 --input 6=1@1200 --input 6=0@1650 --input 6=1@2500 --input 6=0@2620
-// Test-inputs: 6=1@400 6=0@700 6=1@1200 6=0@1650 6=1@2500 6=0@2620
+// Run: motiontool run 24_product_length.m --seconds 10 --input 6=0@0 --input 6=1@400 --input 6=0@700 --input 6=1@1200 --input 6=0@1650 --input 6=1@2500 --input 6=0@2620
+// Test-inputs: 6=0@0 6=1@400 6=0@700 6=1@1200 6=0@1650 6=1@2500 6=0@2620
 // Test-seconds: 10
 // Expect: product 1: 6144 qc
 // Expect: product 2: 9216 qc

@@ -1,7 +1,7 @@
 // Title: Speed set-point from an analog input
 // Shows: INAD, CVEL, CSTART, CSTOP, abs, rnd, dead band, ON PERIOD, IN
-// Run: motiontool run 25_analog_speed.m --seconds 10 --input 53=500@0 --input 53=-250@1500 --input 53=15@3000 --input 53=1000@4000 --input 1=1@5500
-// Test-inputs: 53=500@0 53=-250@1500 53=15@3000 53=1000@4000 1=1@5500
+// Run: motiontool run 25_analog_speed.m --seconds 10 --input 1=0@0 --input 53=500@0 --input 53=-250@1500 --input 53=15@3000 --input 53=1000@4000 --input 1=1@5500
+// Test-inputs: 1=0@0 53=500@0 53=-250@1500 53=15@3000 53=1000@4000 1=1@5500
 // Test-seconds: 10
 // Expect: 1 ms: INAD 0 -> CVEL 0
 // Expect: 52 ms: INAD 500 -> CVEL 30

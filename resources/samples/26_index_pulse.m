@@ -27,6 +27,17 @@ DEC 50
 rev = 4 * GET ENCODER           // qc per motor revolution
 PRINT "one revolution = ", rev, " qc"
 
+// The pulses sit at fixed places of the motor shaft, and an earlier
+// program may have left the axis anywhere and a temporary zero set:
+// make the first pulse after the machine zero this program's zero, so
+// that the positions below are the same on every run (SETORIGIN p is a
+// machine position, CR 3984-3999).
+RSTORIGIN
+POSA 0
+INDEX
+DELAY 100
+SETORIGIN APOS
+
 start = 1234
 REPEAT
     POSA start
@@ -36,5 +47,6 @@ REPEAT
     start = start + 5555
 UNTIL start > 15000
 
-DEFORIGIN                       // this index pulse is our zero now
+RSTORIGIN                       // back to machine positions ...
+DEFORIGIN                       // ... and this index pulse is the machine's zero now
 PRINT "new zero at the index: APOS ", APOS

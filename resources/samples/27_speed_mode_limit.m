@@ -27,6 +27,13 @@ SET ERRCOND 2                  // controlled stop on errors
 ACC 50
 DEC 50
 VEL 50
+// The software limits are positions of the machine: HOME sets its zero
+// and a DEFORIGIN moves the limits along (DG 10158), a SETORIGIN does
+// not. An earlier program may have left the axis anywhere and a
+// temporary zero set: start from the machine zero, inside the range.
+RSTORIGIN
+POSA 0
+DELAY 200                     // settle, as after power-up
 hit = 0
 
 CVEL -30                       // towards the negative limit

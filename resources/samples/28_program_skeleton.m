@@ -1,8 +1,8 @@
 // Title: Skeleton of a machine program with an endless main loop
 // Shows: program layout, #pragma NOIMPLICIT, long declarations, ON ERROR, ON INT, labels, GOTO, EXIT
-// Run: motiontool run 28_program_skeleton.m --seconds 8 --input 2=1@2500 --input 2=0@4500
-// Test-inputs: 2=1@2500 2=0@4500
-// Test-seconds: 8
+// Run: motiontool run 28_program_skeleton.m --seconds 7 --input 2=0@0 --input 2=1@2500 --input 2=0@4500
+// Test-inputs: 2=0@0 2=1@2500 2=0@4500
+// Test-seconds: 7
 // Expect: cycle 1 done at 1831 ms
 // Expect: pause requested during cycle 2
 // Expect: cycle 2 done at 3661 ms
@@ -27,6 +27,12 @@ DIM log[10]
 long cycles, paused, fault, t0
 t0 = TIME - 1                 // the start (TIME counts from power-up; line 1 runs at start + 1 ms)
 
+// An earlier program may have left the axis anywhere and a temporary zero
+// set (the controller keeps both): count this program's positions from
+// where the axis stands now, without touching the machine's zero and
+// software limits (SETORIGIN is relative to the real zero, CR 3984-3999).
+RSTORIGIN
+SETORIGIN APOS
 ON ERROR GOSUB on_error
 ON INT 2 GOSUB pause_request        // input 2: operator pause
 

@@ -6,7 +6,7 @@
 // Expect: speed high limit 4-13: 1500 RPM
 // Expect: relay 1 function 5-40[0]: 51
 // Expect: max. reference 3-03: 1500000 -> 60000
-// Expect: running: 250 (x 0.1 Hz), 749 RPM
+// Expect: running: 250 (x 0.1 Hz), 750 RPM
 // Expect: stopped: 0 (x 0.1 Hz)
 // Expect-warnings: GETVLT GETVLTSUB SETVLT
 // Expect-end: ended
@@ -34,7 +34,7 @@ ACC 100
 CVEL 50
 CSTART
 DELAY 2000
-PRINT "running: ", GETVLT 1613, " (x 0.1 Hz), ", GETVLT 1617, " RPM"
+PRINT "running: ", GETVLT 1613, " (x 0.1 Hz), ", (GETVLT 1617 rnd 10) * 10, " RPM"   // to 10 RPM: 16-17 follows the measured speed
 CSTOP
 WAITAX
 DELAY 100                       // 16-13 follows the motor, not the command

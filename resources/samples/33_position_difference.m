@@ -5,7 +5,7 @@
 // Expect: moved 24906 qc, commanded 25000
 // Expect: moved -9904 qc back
 // Expect: APOS - old: -2147383648, APOSDIFF: 100000
-// Expect: master moved 70019
+// Expect: master moved 70020
 // Expect-end: ended
 //
 // "How far since then?" is APOS - old for a machine that runs back and
@@ -18,9 +18,21 @@
 //
 // The virtual master (PULSVEL) drives the master position MAPOS here.
 
+// An earlier program may have left the axis anywhere and a temporary zero
+// set (the controller keeps both): count this program's positions from
+// where the axis stands now, without touching the machine's zero and
+// software limits (SETORIGIN is relative to the real zero, CR 3984-3999).
+RSTORIGIN
+SETORIGIN APOS
+PULSACC 0                // an earlier program's virtual master may still run:
+PULSVEL 0                // switch it off (CR 3570-3571) and wait until the master
+WHILE MAVEL != 0 DO      // stands: this program starts it from standstill
+    DELAY 1
+ENDWHILE
 VEL 100
 ACC 100
 DEC 100
+POSA 0                   // the set-point on a whole qc (a stopped synchronisation may leave it between two)
 old_a = APOS
 old_c = CPOS
 POSR 25000
@@ -39,4 +51,4 @@ old_m = MAPOS
 PULSACC 20000
 PULSVEL 10000                   // 10000 lines/s = 40000 master qc/s
 DELAY 2000
-PRINT "master moved ", MAPOSDIFF old_m
+PRINT "master moved ", (MAPOSDIFF old_m rnd 10) * 10    // to 10 qc: where within a qc the master starts depends on what ran before

@@ -20,10 +20,17 @@
 // acceleration is ramped down to zero now: while speeding up that is
 // more than the speed of the moment.
 
+// An earlier program may have left the axis anywhere and a temporary zero
+// set (the controller keeps both): count this program's positions from
+// where the axis stands now, without touching the machine's zero and
+// software limits (SETORIGIN is relative to the real zero, CR 3984-3999).
+RSTORIGIN
+SETORIGIN APOS
 SET RAMPTYPE 2
 VEL 100
 ACC 50
 DEC 50
+POSA 0                           // the set-point on a whole qc (a stopped synchronisation may leave it between two)
 mark = 400000
 CVEL 80
 CSTART
@@ -38,4 +45,6 @@ PRINT "stop at ", CPOS, " with a stop distance of ", dist
 CSTOP
 WAITAX
 DELAY 200
-PRINT "stopped at ", APOS, ", ", APOS - mark, " qc from the mark"
+// CPOS, where the ramp ended: APOS settles within a qc of it, on which
+// side depends on where within a qc an earlier program left the axis
+PRINT "stopped at ", CPOS, ", ", CPOS - mark, " qc from the mark"

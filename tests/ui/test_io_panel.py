@@ -121,12 +121,12 @@ def test_the_analog_slider_moved_by_keys_sets_inad(window, qtbot):
 
 
 def test_a_samples_test_inputs_are_offered_and_applied_at_execute(window, qtbot):
-    """25_analog_speed's header asks for 53=500@0 … 1=1@5500: opening it offers them; with Apply at Execute the run
-    prints exactly what its header documents, as `motiontool run --input` does."""
+    """25_analog_speed's header asks for 1=0@0 53=500@0 … 1=1@5500: opening it offers them; with Apply at Execute
+    the run prints exactly what its header documents, as `motiontool run --input` does."""
     open_sample(window, "25_analog_speed.m")
     panel = window.io_panel
     assert panel.dock.isVisible() and panel.offer.isVisible()
-    assert "25_analog_speed.m</b> asks for test inputs 53=500@0 53=-250@1500" in panel.offer_label.text()
+    assert "25_analog_speed.m</b> asks for test inputs 1=0@0 53=500@0 53=-250@1500" in panel.offer_label.text()
     assert "Apply at Execute" in window.messages.toPlainText()
     click(qtbot, panel.apply_button)
     assert panel.apply_button.isChecked()
