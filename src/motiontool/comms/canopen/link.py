@@ -141,6 +141,9 @@ class CanopenLink(RemoteLink):
         self.network.add_node(self.remote)
         for client in self.remote.sdo_channels:      # python-canopen gives its network to `sdo` only
             client.network = self.network
+        if self.sdo_channel != 1:     # channel 1's answers (another master's) would pile up in its queue unread
+            first = self.remote.sdo_channels[0]
+            self.network.unsubscribe(first.tx_cobid, first.on_response)
         self.remote.nmt.add_heartbeat_callback(self._on_heartbeat)
         # our adapter does not hand us our own frames: a request on our channel is another master's
         self.network.subscribe(self.remote.sdo.rx_cobid, self._on_foreign_request)
@@ -177,6 +180,7 @@ class CanopenLink(RemoteLink):
         first.RESPONSE_TIMEOUT = self.sdo_timeout_s
         self.network.subscribe(first.rx_cobid, self._on_foreign_request)
         self.network.subscribe(first.tx_cobid, self._on_foreign_request)   # answers to the other master too
+        self.network.subscribe(first.tx_cobid, first.on_response)
         try:
             for attempt in range(ENABLE_TRIES):
                 self._quiet(first.rx_cobid, first.tx_cobid)
@@ -196,6 +200,7 @@ class CanopenLink(RemoteLink):
                                         "other master's transfers; enable it there or in the program (DG 7339)"
                                         ) from None
         finally:
+            self.network.unsubscribe(first.tx_cobid, first.on_response)
             self.network.unsubscribe(first.tx_cobid, self._on_foreign_request)
             self.network.unsubscribe(first.rx_cobid, self._on_foreign_request)
         self._publish(LinkEvent("message", 0, f"CANopen node {self.node_id}: second SDO server enabled (0x1201 "
