@@ -116,7 +116,7 @@ class ParameterField:
             return str(self.widget.currentData())
         return self.widget.text().strip()
 
-    def wait(self, text: str = "reading …") -> None:
+    def wait(self, *, text: str = "reading …") -> None:
         """No value yet: the field is empty, says why and takes no input (a value typed now would be overwritten)."""
         self._loading = True
         self.current, self.pending, self.refused = None, None, None
@@ -289,12 +289,12 @@ class ParametersDialog(QDialog):
         ticket, link, cid = self._ticket, self._link, self._shown_controller
         for number, field in fields.items():
             if ticket.cancelled:              # no link, or a fault already said
-                field.wait("not read")
+                field.wait(text="not read")
                 continue
             field.wait()
             # a request still queued when its answer would be stale is not sent: the line is free at once
-            self.jobs.run(lambda n=number: None if ticket.cancelled else link.read_parameter(n),
-                          lambda result, f=field: self._answer(ticket, cid, f, result))
+            self.jobs.run(lambda *, n=number: None if ticket.cancelled else link.read_parameter(n),
+                          lambda result, *, f=field: self._answer(ticket, cid, f, result))
 
     def _answer(self, ticket: _Ticket, cid: int, field: ParameterField, result) -> None:
         if ticket.cancelled:
@@ -307,7 +307,7 @@ class ParametersDialog(QDialog):
             ticket.cancelled = True           # one answer missing: the rest would wait for the same fault
             for f in self.fields.values():
                 if f.current is None:
-                    f.wait("not read")
+                    f.wait(text="not read")
             self._busy(None)
             self.say(f"Controller {cid}: {exc}", error=True)
             return
