@@ -153,3 +153,45 @@ def test_a_link_on_sdo_channel_2_comes_back_when_its_drive_restarts():
         link.close()
         if second is not None:
             second.stop()
+
+
+def test_eight_params_calls_on_sdo_2_beside_a_polling_ide():
+    """The issue's case: an IDE polls node 1 on channel 1 (a status every 50 ms) while `params` runs 8 times
+    (open, read 8 parameters, close). Each `params` on `,sdo=2` succeeds, the first enabling SDO 2 through channel
+    1 in a pause of the IDE's; the IDE sees at most the collision said in words."""
+    from motiontool.paramdb import database
+
+    keys = [p.number for p in database()][:8]
+    with drive_process("--node", "1", listen=LISTEN) as drive:
+        ide = open_link(drive.url + "#1")
+        stop, ide_failures, polls = threading.Event(), [], [0]
+
+        def poll():
+            while not stop.wait(0.05):
+                try:
+                    ide.status()
+                    polls[0] += 1
+                except LinkError as exc:
+                    ide_failures.append(str(exc))
+        poller = threading.Thread(target=poll)
+        poller.start()
+        failures = []
+        try:
+            for _ in range(8):
+                try:
+                    link = open_link(drive.url + "#1,sdo=2")
+                    try:
+                        for key in keys:
+                            link.read_parameter(key)
+                    finally:
+                        link.close()
+                except LinkError as exc:
+                    failures.append(str(exc))
+        finally:
+            stop.set()
+            poller.join(30)
+            ide.close()
+    assert failures == []
+    assert polls[0] > 0
+    for text in ide_failures:
+        assert text == "another master uses SDO channel 1 of CANopen node 1; use ,sdo=2 on one of them", text
