@@ -391,6 +391,19 @@ class CanopenLink(RemoteLink):
             if not self._lost:
                 threading.Thread(target=self._restore, args=("the controller started again",), daemon=True).start()
 
+    def _silent(self) -> bool:
+        beat = self._last_beat
+        return beat is None or time.monotonic() - beat > self.consumer_ms / 1000
+
+    def _set_connection(self, *, lost: bool, text: str = "") -> None:
+        """Where heartbeats (or guarding answers) are watched, they alone say the node is back: an SDO answer while
+        they are silent (the drive's link messages are served while its clock stands still) made the link flap
+        between lost and restored."""
+        watched = self._producer_ms or self._subscribers
+        if not lost and self._lost and watched and self._silent():
+            return
+        super()._set_connection(lost=lost, text=text)
+
     def _watchdog(self) -> None:
         while not self._closed.wait(0.05):
             if self._virtual_clock():
@@ -400,7 +413,7 @@ class CanopenLink(RemoteLink):
                     continue
                 self._guard()
             beat = self._last_beat
-            silent = beat is None or time.monotonic() - beat > self.consumer_ms / 1000
+            silent = self._silent()
             if not self._lost and silent and beat is not None:
                 self._set_connection(lost=True, text=self.lost_text(f"no heartbeat from CANopen node "
                                                                     f"{self.node_id} for {self.consumer_ms} ms"))
