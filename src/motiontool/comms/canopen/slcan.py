@@ -20,7 +20,6 @@ import contextlib
 import re
 import select
 import socket
-import sys
 import threading
 import time
 from collections import deque
@@ -29,6 +28,7 @@ from collections.abc import Callable
 import can
 
 from motiontool.cliargs import shown
+from motiontool.comms.drive.listeners import refuse
 
 OK, ERROR = b"\r", b"\a"
 VERSION, SERIAL = b"V1013\r", b"NMT15\r"
@@ -225,11 +225,7 @@ class SlcanServer:
             with self._clients_lock:
                 full = len(self.clients) >= MAX_CLIENTS
             if full:
-                sock.close()
-                if not self.refused:
-                    print(f"motiontool drive: canopen:slcan:{self.url}: a connection was refused: {MAX_CLIENTS} "
-                          "clients are connected already", file=sys.stderr, flush=True)
-                self.refused += 1
+                self.refused = refuse(sock, f"canopen:slcan:{self.url}", MAX_CLIENTS, "clients", self.refused)
                 continue
             sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
             client = _Client(self, sock)

@@ -92,3 +92,13 @@ def exposed(spec: LinkSpec, host: str) -> bool:
 def warn_exposed(url: str) -> None:
     print(f"motiontool drive: WARNING: {url} serves the network without authentication: anyone who reaches it "
           "can download and start programs, write parameters and reset the controller", file=sys.stderr, flush=True)
+
+
+def refuse(sock, url: str, limit: int, who: str, refused: int) -> int:
+    """Close a connection beyond a listener's `limit` at once, and say so on stderr the first time; the count of
+    refusals after it."""
+    sock.close()
+    if not refused:
+        print(f"motiontool drive: {url}: a connection was refused: {limit} {who} are connected already",
+              file=sys.stderr, flush=True)
+    return refused + 1

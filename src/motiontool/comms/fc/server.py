@@ -17,14 +17,13 @@ import contextlib
 import os
 import select
 import socket
-import sys
 import threading
 import time
 from collections.abc import Callable
 
 from motiontool.cliargs import shown
 from motiontool.comms.chunks import SlaveChannel
-from motiontool.comms.drive.listeners import exposed, listen_port, url_host, warn_exposed
+from motiontool.comms.drive.listeners import exposed, listen_port, refuse, url_host, warn_exposed
 from motiontool.comms.fc.extension import MAX_CHUNK, frame_telegram, is_frame, telegram_frame
 from motiontool.comms.fc.telegram import (
     AK_NONE,
@@ -209,11 +208,7 @@ class FcSocketListener(_Serving):
                 return
             serving = sum(t.is_alive() for t in self._threads) - 1       # less this accepting thread
             if serving >= MAX_CONNECTIONS:
-                conn.close()
-                if not self.refused:
-                    print(f"motiontool drive: {self.url}: a connection was refused: {MAX_CONNECTIONS} masters are "
-                          "connected already", file=sys.stderr, flush=True)
-                self.refused += 1
+                self.refused = refuse(conn, self.url, MAX_CONNECTIONS, "masters", self.refused)
                 continue
             conn.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
             self._spawn(self._serve, conn)
