@@ -25,6 +25,7 @@ SET HOME_VEL 10         // keep the search slow: the switch is only a cam
 SET HOME_RAMP 20
 SET HOME_TYPE 1         // switch edge only, no index pulse
 SET HOME_OFFSET -2000   // zero lies 2000 qc before the switch edge
+DELAY 2                 // input 1 follows the switch from the next scan, not a level set before
 
 // A machine that has been running may stand below the cam, on it or
 // above it, and HOME searches in one direction only (the sign of

@@ -1,7 +1,7 @@
 // Title: Software limits and an error handler
 // Shows: SET POSLIMIT, SET SWPOSLIMACT, ON ERROR GOSUB, ERRNO, ERRCLR, POSA
-// Run: motiontool run 09_soft_limit_error.m --seconds 10
-// Test-seconds: 10
+// Run: motiontool run 09_soft_limit_error.m --seconds 30
+// Test-seconds: 30
 // Expect: at 30000
 // Expect: error 111 at APOS 29953 - target outside the software limits
 // Expect: after the refused move: CPOS 29953, errors 1

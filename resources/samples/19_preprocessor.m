@@ -2,10 +2,10 @@
 // Shows: #define, function-like macros, #if/#elif/#else/#endif, #ifdef, #undef, __LINE__
 // Run: motiontool run 19_preprocessor.m --seconds 10
 // Test-seconds: 10
-// Expect: [line 57] variant 2
-// Expect: [line 58] stroke in qc 12000
-// Expect: [line 60] arrived at 12000
-// Expect: [line 66] second position 10000
+// Expect: [line 61] variant 2
+// Expect: [line 62] stroke in qc 12000
+// Expect: [line 64] arrived at 12000
+// Expect: [line 70] second position 10000
 // Expect: clamped: 0 42 100
 // Expect: done
 // Expect-end: ended
@@ -45,10 +45,14 @@
     #define TRACE(text, value)
 #endif
 
-// An earlier program may have left the axis anywhere and a temporary zero
-// set (the controller keeps both): count this program's positions from
-// where the axis stands now, without touching the machine's zero and
-// software limits (SETORIGIN is relative to the real zero, CR 3984-3999).
+// An earlier program may have left the axis anywhere, still braking, and
+// a temporary zero set (the controller keeps them): wait for the
+// standstill (AXEND bit value 1), then count this program's positions
+// from there, without touching the machine's zero and software limits
+// (SETORIGIN is relative to the real zero, CR 3984-3999).
+WHILE (AXEND & 1) == 0 DO
+    DELAY 1
+ENDWHILE
 RSTORIGIN
 SETORIGIN APOS
 VEL SPEED

@@ -22,10 +22,14 @@
 // the parameter is linked. The program also writes a piece counter to
 // 19-01, so the operator sees the progress on the LCP.
 
-// An earlier program may have left the axis anywhere and a temporary zero
-// set (the controller keeps both): count this program's positions from
-// where the axis stands now, without touching the machine's zero and
-// software limits (SETORIGIN is relative to the real zero, CR 3984-3999).
+// An earlier program may have left the axis anywhere, still braking, and
+// a temporary zero set (the controller keeps them): wait for the
+// standstill (AXEND bit value 1), then count this program's positions
+// from there, without touching the machine's zero and software limits
+// (SETORIGIN is relative to the real zero, CR 3984-3999).
+WHILE (AXEND & 1) == 0 DO
+    DELAY 1
+ENDWHILE
 RSTORIGIN
 SETORIGIN APOS
 LINKGPAR 1900 "Feed length qc" 1000 40000 0

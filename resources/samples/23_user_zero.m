@@ -1,7 +1,7 @@
 // Title: Machine zero and workpiece zero: DEFORIGIN, SETORIGIN, RSTORIGIN
 // Shows: DEFORIGIN, SETORIGIN, RSTORIGIN, APOS, CPOS, SYSVAR 4097, GOSUB
-// Run: motiontool run 23_user_zero.m --seconds 20
-// Test-seconds: 20
+// Run: motiontool run 23_user_zero.m --seconds 40
+// Test-seconds: 40
 // Expect: machine zero set: APOS 0
 // Expect: fixture 1 hole 1: CPOS 2500, machine 6500
 // Expect: fixture 1 hole 2: CPOS 5000, machine 9000

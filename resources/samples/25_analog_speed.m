@@ -42,6 +42,7 @@ WHILE IN 1 == 0 DO
 ENDWHILE
 ON PERIOD 0 GOSUB follow_pot
 CSTOP
+WAITAX                              // the mixer has stopped when it stands, not when told to
 PRINT "stop button: mixer stopped"
 
 SUBMAINPROG

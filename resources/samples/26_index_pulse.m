@@ -1,7 +1,7 @@
 // Title: Finding the encoder index pulse with INDEX
 // Shows: INDEX, HOME_VEL, GET ENCODER, mod, rnd, DEFORIGIN, REPEAT/UNTIL
-// Run: motiontool run 26_index_pulse.m --seconds 20
-// Test-seconds: 20
+// Run: motiontool run 26_index_pulse.m --seconds 40
+// Test-seconds: 40
 // Expect: one revolution = 4096 qc
 // Expect: from 1234: index at 4096 = turn 1 + 0 qc
 // Expect: from 6789: index at 8192 = turn 2 + 0 qc

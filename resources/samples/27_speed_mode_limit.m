@@ -1,7 +1,7 @@
 // Title: Software limit in speed mode: stop, clear and drive back
 // Shows: SET NEGLIMIT, SET SWNEGLIMACT, SET ERRCOND, CVEL, CSTART, ON ERROR GOSUB, ERRCLR, POSA
-// Run: motiontool run 27_speed_mode_limit.m --seconds 10
-// Test-seconds: 10
+// Run: motiontool run 27_speed_mode_limit.m --seconds 30
+// Test-seconds: 30
 // Expect: error 111 while running towards the limit
 // Expect: stopped beyond NEGLIMIT: 1
 // Expect: back inside the range at 0
@@ -19,7 +19,6 @@
 // the range, and the axis may then drive back - only in the direction
 // back into the range. Driving further out raises error 198.
 
-t0 = TIME - 1                 // the start (TIME counts from power-up; line 1 runs at start + 1 ms)
 ON ERROR GOSUB on_error
 SET NEGLIMIT -30000
 SET SWNEGLIMACT 1
@@ -37,6 +36,7 @@ DELAY 200                     // settle, as after power-up
 hit = 0
 
 CVEL -30                       // towards the negative limit
+t0 = TIME                      // (TIME counts from power-up; the way to the machine zero took a while)
 CSTART
 WHILE hit == 0 AND TIME - t0 < 5000 DO
     DELAY 10

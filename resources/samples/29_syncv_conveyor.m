@@ -18,10 +18,14 @@
 // qc the axis stands depends on what ran before: the speeds are printed
 // to 1000 qc/s, the position to 100 qc.
 
-// An earlier program may have left the axis anywhere and a temporary zero
-// set (the controller keeps both): count this program's positions from
-// where the axis stands now, without touching the machine's zero and
-// software limits (SETORIGIN is relative to the real zero, CR 3984-3999).
+// An earlier program may have left the axis anywhere, still braking, and
+// a temporary zero set (the controller keeps them): wait for the
+// standstill (AXEND bit value 1), then count this program's positions
+// from there, without touching the machine's zero and software limits
+// (SETORIGIN is relative to the real zero, CR 3984-3999).
+WHILE (AXEND & 1) == 0 DO
+    DELAY 1
+ENDWHILE
 RSTORIGIN
 SETORIGIN APOS
 PULSACC 0                // an earlier program's virtual master may still run:
