@@ -7,8 +7,6 @@ Decisions A75 (the browser's table and file), A76 (polled curves on the APC)."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QAbstractItemView, QApplication
 
@@ -16,10 +14,11 @@ from motiontool.scope.ui import ScopeWindow
 from motiontool.ui.apc_parameters import ApcParametersDialog
 from motiontool.ui.interface_dialog import SelectControllerDialog
 from tests.modal import answering
+from tests.shots import shot_path
 from tests.ui.test_controller_dialogs import button, click
 
 KEY_MS = 120   # a key every 120 ms: a user who looks at the keys
-SCREENSHOT = Path(__file__).parents[2] / "docs" / "screenshots" / "apc_parameters.png"
+SCREENSHOT = "apc_parameters.png"   # docs/screenshots/ (tests/shots.py)
 REV = 65536    # counts per revolution at 16 turns bits (the §7.1 setup)
 
 
@@ -70,7 +69,7 @@ def set_18_11(qtbot, text: str, *, screenshot: bool = False):
             table, below = dialog.rows["18.11"].item.tableWidget(), dialog.rows["18.13"].item.row()
             qtbot.mouseClick(table.viewport(), Qt.MouseButton.LeftButton,
                              pos=table.visualRect(table.model().index(below, 1)).center())
-            dialog.grab().save(str(SCREENSHOT))   # docs: menu 18 with the changed setpoint, before OK
+            dialog.grab().save(str(shot_path(SCREENSHOT)))   # docs: menu 18 with the changed setpoint, before OK
         click(qtbot, button(dialog, "OK"))
         qtbot.waitUntil(lambda: not dialog.isVisible(), timeout=10_000)
     return edit

@@ -5,14 +5,11 @@ reversed from the download convention (down = to the controller)."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 from PySide6.QtCore import QRect, Qt, QTimer
 from PySide6.QtWidgets import QApplication, QMessageBox, QStyle, QToolButton
 
 from tests.modal import answering, button_reply
-
-SCREENSHOTS = Path(__file__).resolve().parents[2] / "docs" / "screenshots"
+from tests.shots import shot_path
 
 
 def _same_icon(icon, pixmap: QStyle.StandardPixmap) -> bool:
@@ -43,10 +40,9 @@ def test_the_cam_editor_opens_with_a_busy_cursor_and_named_read_write_buttons(wi
     assert _same_icon(read.icon(), QStyle.StandardPixmap.SP_ArrowUp)
     assert read.isVisible() and write.isVisible() and write.x() > read.x()
 
-    SCREENSHOTS.mkdir(parents=True, exist_ok=True)
     bar = read.parentWidget()  # the toolbars' two rows
     editor.grab(QRect(0, 0, editor.width(), bar.geometry().bottom() + 1)).save(
-        str(SCREENSHOTS / "cam_editor_buttons.png"))
+        str(shot_path("cam_editor_buttons.png")))
 
     with answering(qtbot, button_reply(QMessageBox.StandardButton.Yes)) as answers:  # the buttons work
         qtbot.mouseClick(write, Qt.MouseButton.LeftButton)

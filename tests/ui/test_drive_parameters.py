@@ -7,18 +7,17 @@ CR 1394-1396: "an LCP value of 50.0 Hz (par. 16-13 conversion index = –1) is e
 
 from __future__ import annotations
 
-from pathlib import Path
-
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QAbstractItemView, QApplication
 
 from motiontool.ui.drive_parameters import DriveParametersDialog
 from motiontool.ui.parameter_dialogs import ParametersDialog
 from tests.modal import answering
+from tests.shots import shot_path
 from tests.ui.test_controller_dialogs import button, choose_group, click, later
 
 KEY_MS = 20   # a key every 20 ms, a fast typist
-SCREENSHOT = Path(__file__).parents[2] / "docs" / "screenshots" / "fc300_parameters.png"
+SCREENSHOT = "fc300_parameters.png"   # docs/screenshots/ (tests/shots.py)
 
 
 def loaded(qtbot, dialog: DriveParametersDialog) -> None:
@@ -79,8 +78,7 @@ def test_4_13_typed_in_the_drive_dialog_is_written_and_nothing_else(window, qtbo
         type_value(qtbot, dialog, 413, "1800")
         assert dialog.pending() == {"4-13": 1800} and cell(dialog, 413).font().bold()
         assert dialog.message.text() == "1 changed value(s): OK writes them"
-        SCREENSHOT.parent.mkdir(exist_ok=True)
-        dialog.grab().save(str(SCREENSHOT))   # docs: the 4-** page with a changed value, before OK
+        dialog.grab().save(str(shot_path(SCREENSHOT)))   # docs: the 4-** page with a changed value, before OK
         click(qtbot, button(dialog, "OK"))
         qtbot.waitUntil(lambda: not dialog.isVisible(), timeout=10_000)
 

@@ -8,15 +8,15 @@ or 1 will be given." CR 3097-3112: "OUT n s … s = condition 0 = OFF". CR 1608:
 from __future__ import annotations
 
 import re
-from pathlib import Path
 
 from PySide6.QtCore import Qt
 from PySide6.QtTest import QTest
 
 from tests.modal import answering
+from tests.shots import shot_path
 from tests.test_samples import SAMPLES_DIR, parse_header
 
-SCREENSHOT = Path(__file__).resolve().parents[2] / "docs" / "screenshots" / "io_panel.png"
+SCREENSHOT = "io_panel.png"   # docs/screenshots/ (tests/shots.py)
 KEY_MS = 120   # a human's pace between keys
 
 
@@ -201,7 +201,6 @@ def test_screenshot_of_the_panel(window, qtbot):
     panel.dock.setFloating(True)
     panel.dock.resize(panel.dock.sizeHint())
     qtbot.wait(300)
-    SCREENSHOT.parent.mkdir(parents=True, exist_ok=True)
-    assert panel.dock.grab().save(str(SCREENSHOT))
+    assert panel.dock.grab().save(str(shot_path(SCREENSHOT)))
     click(qtbot, panel.toggles[12])
     wait_line(window, qtbot, before, "program ended")
