@@ -55,9 +55,12 @@ NMT_BACK = {4: 0x02, 127: 0x80}   # the NMT command that returns a node to a sta
 ABORT_ERRORS = {0x06010002: 112, 0x06020000: 112, 0x06090030: 183, 0x06090031: 183, 0x06090032: 183}
 OPTIONS = {"heartbeat", "consumer", "timeout", "bitrate", "eds", "client", "sdo"}
 SDO_COB_IDS = {1: (0x600, 0x580), 2: (0x100, 0x680)}   # client → server, server → client (DG 7323-7325)
-SDO2_PROBE_S = 0.3      # how long a request on SDO 2 waits before the link enables it (a node answers in ms)
+# how long a request on SDO 2 waits before the link takes it to be off and enables it: a node answers in ms, but a
+# busy machine's scheduler does not - at 0.3 s a clean-clone run took an enabled server for a silent one and then
+# failed to write it between another master's transfers
+SDO2_PROBE_S = 1.0
 COLLISION_S = 2.0       # another master's request this recent explains a transfer that went wrong
-ENABLE_TRIES, QUIET_S = 3, 0.05   # enabling SDO 2 through channel 1 waits for a pause of the other master there
+ENABLE_TRIES, QUIET_S = 10, 0.05  # enabling SDO 2 through channel 1 waits for a pause of the other master there
 
 
 def open_bus(interface: str, channel: str, bitrate: int | None = None, client: str = "fast") -> can.BusABC:
@@ -190,6 +193,11 @@ class CanopenLink(RemoteLink):
                     break
                 except (SdoCommunicationError, SdoAbortedError) as exc:
                     busy = self._collision(1)
+                    if busy is None and "Unexpected response" in str(exc):
+                        # an answer to no request of ours is another master's, whether or not its request was seen
+                        # (at load 8 it came before the notifier had stamped the request)
+                        busy = LinkError(f"another master uses SDO channel 1 of CANopen node {self.node_id}; "
+                                         "use ,sdo=2 on one of them")
                     if busy is None:
                         if isinstance(exc, SdoAbortedError):
                             raise LinkError(f"CANopen node {self.node_id} refused to enable its second SDO server "
@@ -269,8 +277,14 @@ class CanopenLink(RemoteLink):
         if self._lost and not self._virtual_clock():   # on a virtual clock no heartbeat says it is back: ask
             raise ConnectionLost(f"no heartbeat from CANopen node {self.node_id}")
         with self._sdo_lock:
+            started = time.monotonic()
             try:
-                return action(self.remote.sdo)
+                result = action(self.remote.sdo)
+                # another master's request on our channel while ours ran: the answer we took may be its answer
+                # (the same object read by both is indistinguishable), so say the collision instead of a value
+                if self._foreign_request.get(self.remote.sdo.rx_cobid, 0) >= started:
+                    raise self._collision() or LinkError("another master used the SDO channel during the transfer")
+                return result
             except SdoCommunicationError as exc:
                 raise self._collision() or ConnectionLost(f"CANopen node {self.node_id} does not answer: {exc}") \
                     from None
