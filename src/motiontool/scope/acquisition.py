@@ -159,6 +159,7 @@ class Polling:
         self.running = False
         self.polls = 0
         self.request_seconds = 0.0   # measured time the link needed for the reads
+        self._last_time: float | None = None
 
     def curves(self) -> list[Curve]:
         return [c for c in self.scope.curves if c.source.method in ("polled", "variable") and c.active]
@@ -178,6 +179,7 @@ class Polling:
         if clear:
             for c in self.curves():
                 c.buffer.clear()
+        self._last_time = None
         self.running = True
 
     def stop(self) -> None:
@@ -196,6 +198,9 @@ class Polling:
             values[-1:-1] = self.link.call("read_variables", names=[c.source.signal for c in variables])
         self.request_seconds += time.perf_counter() - began
         now = float(values[-1])
+        if now == self._last_time:   # the controller's clock stood since the last poll (a busy simulator host):
+            return                   # the same instant twice is no new sample
+        self._last_time = now
         for c, v in zip(signals + variables, values[:-1], strict=True):
             c.buffer.append(now, float(v) if c.source.select is None else float(apply(c.source.select, [v])[0]))
         self.polls += 1
