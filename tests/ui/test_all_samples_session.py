@@ -87,6 +87,11 @@ def test_every_sample_prints_its_documented_output_one_after_another_in_one_sess
         prints = [line for line in lines if not line.startswith("program ") and not CONTROLLER_ERROR.match(line)]
         # the error events, not a detail or hint of the previous sample's error, which may come after this start
         errors = sorted({int(m.group(1)) for m in map(CONTROLLER_ERROR.match, lines) if m and m.group(2) == ":"})
+        # a sample that runs on is broken by the test once its Test-seconds are up, as the test sees the clock: on a
+        # busy machine that is later in controller time (a clean-clone run at load 7 saw 28's next cycle at 8160
+        # ms); what it printed within its time is its documented output, what came after is not compared
+        if header.expect_end == "running":
+            prints = prints[:len(header.expect)]
         if (header.expect and prints != header.expect) or errors != sorted(set(header.expect_errors or [])) \
                 or end != header.expect_end:
             failures.append(f"{path.name}: printed {prints}, errors {errors}, {end}")
