@@ -132,6 +132,7 @@ class WatchPane(QDockWidget):
         self._polling = False     # a poll is on the link-jobs thread: the next waits for it (a slow line)
         self._again = False       # asked meanwhile (a value was written): poll once more when it is done
         self._notes: dict[int, str] = {}    # a refused value's reason, by entry, for the next poll's text
+        self._tips: dict[int, str] = {}     # a write's answer for the tooltip of a cell being edited meanwhile
         body = QWidget()
         layout = QVBoxLayout(body)
         layout.setContentsMargins(2, 2, 2, 2)
@@ -162,14 +163,24 @@ class WatchPane(QDockWidget):
         refused = str(refused) if isinstance(refused, Exception) else refused
         row = next((r for r, e in enumerate(self.entries) if e is entry), None)
         if row is not None:
-            self._filling = True
-            self.table.item(row, 1).setToolTip(refused or "")
-            self._filling = False
+            self._tips[id(entry)] = refused or ""
+            self._set_tip(row, entry)
             if refused:   # shown beside the controller's value once it has been read again
                 self._notes[id(entry)] = refused
         if refused:
             self.refused.emit(entry.key, refused)
         self.refresh()
+
+    def _editing(self, row: int) -> bool:
+        return self.table.state() == QAbstractItemView.State.EditingState and self.table.currentRow() == row
+
+    def _set_tip(self, row: int, entry: WatchEntry) -> None:
+        """Any change to a cell resets its open editor to the cell's value, and the user's typing was lost:
+        a cell being edited gets its tooltip when the editor has closed."""
+        if id(entry) in self._tips and not self._editing(row):
+            self._filling = True
+            self.table.item(row, 1).setToolTip(self._tips.pop(id(entry)))
+            self._filling = False
 
     def set_variables(self, variables: list[str], arrays: list[tuple[str, int]]) -> None:
         self.variables, self.arrays = list(variables), list(arrays)
@@ -196,12 +207,14 @@ class WatchPane(QDockWidget):
 
     def remove(self, row: int) -> None:
         self._notes.pop(id(self.entries[row]), None)
+        self._tips.pop(id(self.entries[row]), None)
         del self.entries[row]
         self.table.removeRow(row)
         self.hint.setVisible(len(self.entries) > HINT_ENTRIES)
 
     def clear(self) -> None:
         self._notes.clear()
+        self._tips.clear()
         self.entries.clear()
         self.table.setRowCount(0)
         self.hint.hide()
@@ -231,8 +244,9 @@ class WatchPane(QDockWidget):
                 row = rows.get(id(entry))
                 if row is None:
                     continue
-                if self.table.state() == QAbstractItemView.State.EditingState and self.table.currentRow() == row:
+                if self._editing(row):
                     continue  # the user is typing a new value here
+                self._set_tip(row, entry)
                 text = f"? {value}" if isinstance(value, Exception) else format_watch(value, entry.fmt)
                 note = self._notes.pop(id(entry), None)
                 self.table.item(row, 1).setText(f"{text}  ({note})" if note else text)
