@@ -2,7 +2,7 @@
 
 Each tick: scripted inputs → machine switches → axis (profile, control, plant, encoder, monitoring) →
 recording → interrupt detection and entry → a slice of the program. Nothing here reads the wall clock,
-so the same program and inputs always give the same trace.
+so the same program and inputs always give the same trace. The tick itself is kernel/tick.py (fused, issue 30).
 """
 
 from __future__ import annotations
@@ -26,10 +26,10 @@ from motiontool.kernel.parameters import ParameterStore, is_axis_parameter
 from motiontool.kernel.plant import PlantConfig
 from motiontool.kernel.recorder import Recorder
 from motiontool.kernel.sysvars import read_sysvar
+from motiontool.kernel.tick import controller_tick
 from motiontool.kernel.units import Scaling
 from motiontool.kernel.vm import VM, ArrayRef
 
-INSTRUCTIONS_PER_TICK = 500  # program speed: machine instructions per ms (docs/decisions.md)
 ERROR_HISTORY = 50           # DG 11350
 PRINT_BUFFER_LINES = 100     # the PRINT output buffer: a full one makes PRINT wait (decisions K82)
 RECENT_EVENTS = 10_000       # events kept in Controller.events (an hour of PRINTs would be gigabytes)
@@ -309,49 +309,7 @@ class Controller:
             self.message(f"the program ended: {what} stops with DEC")
 
     # --- time ------------------------------------------------------------------------------------------
-    def tick(self) -> None:
-        """Advance one millisecond; then the link takes PRINT output (all, or output_per_tick lines)."""
-        self._tick()
-        if self.output:
-            self.send_output(self.output_per_tick)
-
-    def _tick(self) -> None:
-        self.time_ms = time_ms = self.time_ms + 1
-        if self.io.events:
-            self.io.apply_events(time_ms)
-        try:
-            functions = self._functions
-            if functions is None or functions:
-                self._machine_inputs()
-            self.master.tick(time_ms)
-            axis = self.axis
-            axis.tick()
-            self.markers.tick()
-            if axis.homing is not None and axis.homing.done:
-                self._homing_finished()
-            if self.soft_limits != (None, None) and axis.mode not in ("idle", "positioning"):
-                self._soft_limits_while_moving()
-            if self.limit_blocked_direction and self._inside_soft_limits():
-                self.limit_blocked_direction = 0
-        except ControllerError as exc:
-            self.raise_error(exc)
-        if self.recorder.active is not None:
-            self.recorder.sample(self._read_sysvar_for_recording)
-        self.can.tick(time_ms)
-        if self.program_state == "running":  # a slice of the program (inline: every tick)
-            vm = self.vm
-            try:
-                if self.interrupts.sources or self.error:
-                    self._serve_interrupts(vm)
-                vm.run(INSTRUCTIONS_PER_TICK)
-            except ControllerError as exc:
-                self.raise_error(exc)
-                return
-            except Exception as exc:  # noqa: BLE001 - a fault of the simulator itself (decisions K81)
-                self.internal_fault(exc)
-                return
-            if vm.ended and self.program_state == "running":
-                self._end_program("ended")
+    tick = controller_tick  # kernel/tick.py: one millisecond, fused (issue 30)
 
     def run_for(self, ms: int, until: Callable[[], bool] | None = None) -> None:
         for _ in range(ms):
