@@ -13,6 +13,9 @@
   ``heartbeat=MS`` sets 0x1017 (restored on close), and only Free Run sends NMT Start to a node that is not
   OPERATIONAL (PDOs travel only then; said as a message, the node's state restored on close); after a boot-up the
   link sets up again what it had asked for; a transport that broke is opened again by itself.
+- a lost connection is a pause (decision N54): a transfer under way stops waiting as soon as the loss is known (the
+  heartbeat or guarding silence, the transport's end) with "lost connection to CANopen node N: …", and while lost
+  the link asks by node guarding (read-only) whether the node is back, whoever subscribes.
 
 Options: ``heartbeat=MS`` (producer time to set; default: leave the node's), ``consumer=MS`` (default 1000 or five
 producer times),
@@ -37,6 +40,7 @@ from canopen.sdo import SdoAbortedError, SdoCommunicationError
 from motiontool.comms.canopen import eds, objects
 from motiontool.comms.canopen.freerun import PdoStream
 from motiontool.comms.canopen.slcan import SlcanSocketBus
+from motiontool.comms.canopen.watch import TransportWatch, answer_reader, sent_at
 from motiontool.comms.links import LinkSpec, register_link_scheme
 from motiontool.comms.protocol import ConnectionLost, LinkError, LinkEvent, Request
 from motiontool.comms.remote import RemoteLink
@@ -76,17 +80,6 @@ def open_bus(interface: str, channel: str, bitrate: int | None = None, client: s
     return can.Bus(**kwargs)
 
 
-def _sent_at(stamp: float | None) -> float:
-    """A heartbeat's time on this process's monotonic clock: when its frame was stamped (wall time), else now. A
-    notifier that falls behind (a busy machine) hands over beats of a node that has since stopped; counted at their
-    handling they made a stalled node look alive (a heartbeat test failed so at load 15)."""
-    now = time.monotonic()
-    if not stamp:
-        return now
-    age = time.time() - stamp
-    return now - age if 0 <= age < 60 else now
-
-
 class CanopenLink(RemoteLink):
     kind = "canopen"
 
@@ -117,6 +110,9 @@ class CanopenLink(RemoteLink):
         self._rebooted = False
         self._blocks = True              # until the node shows it does not serve block transfers
         self._stream_request: tuple[list[str], int] | None = None
+        self._cut: str | None = None                  # why waiting transfers stop: the link lost the node
+        self._transport_error: Exception | None = None
+        self._long_transfer = False                   # a link message under way (its answer may take 10 s)
         super().__init__(self._exchange, f"CANopen node {node} on {interface}:{channel}")
         self._connect()
         if sdo_channel == 2:
@@ -135,7 +131,9 @@ class CanopenLink(RemoteLink):
         self.network = network = canopen.Network(bus)
         if isinstance(bus, SlcanSocketBus):     # only what the link subscribes to (its node, its PDOs)
             bus.wanted = lambda can_id, extended: not extended and can_id in network.subscribers
-        self.network.notifier = can.Notifier(bus, self.network.listeners, 0.5)
+        self._transport_error = None
+        watch = TransportWatch(self._on_transport_error)
+        self.network.notifier = watch.notifier = can.Notifier(bus, [*self.network.listeners, watch], 0.5)
         self.remote = canopen.RemoteNode(self.node_id, self.od)
         if self.sdo_channel != 1:
             rx, tx = SDO_COB_IDS[self.sdo_channel]
@@ -144,6 +142,7 @@ class CanopenLink(RemoteLink):
         self.network.add_node(self.remote)
         for client in self.remote.sdo_channels:      # python-canopen gives its network to `sdo` only
             client.network = self.network
+            client.read_response = answer_reader(client, lambda: self._cut)
         if self.sdo_channel != 1:     # channel 1's answers (another master's) would pile up in its queue unread
             first = self.remote.sdo_channels[0]
             self.network.unsubscribe(first.tx_cobid, first.on_response)
@@ -153,6 +152,9 @@ class CanopenLink(RemoteLink):
         if hasattr(self, "stream"):      # a new transport: the link sets the node up again when it answers
             self.stream.sdo, self.stream.network = self.remote.sdo, self.network
             self._rebooted = True
+
+    def _on_transport_error(self, exc: Exception) -> None:
+        self._transport_error = exc
 
     def _on_foreign_request(self, can_id, data, timestamp) -> None:
         self._foreign_request[can_id] = time.monotonic()
@@ -275,7 +277,7 @@ class CanopenLink(RemoteLink):
         """Run an SDO action; a missing answer is ConnectionLost, an abort a LinkError with the controller's
         error number where there is one."""
         if self._lost and not self._virtual_clock():   # on a virtual clock no heartbeat says it is back: ask
-            raise ConnectionLost(f"no heartbeat from CANopen node {self.node_id}")
+            raise ConnectionLost(self._cut or f"lost connection to CANopen node {self.node_id}: it does not answer")
         with self._sdo_lock:
             started = time.monotonic()
             try:
@@ -285,25 +287,32 @@ class CanopenLink(RemoteLink):
                 if self._foreign_request.get(self.remote.sdo.rx_cobid, 0) >= started:
                     raise self._collision() or LinkError("another master used the SDO channel during the transfer")
                 return result
-            except SdoCommunicationError as exc:
+            except (SdoCommunicationError, can.CanError, OSError) as exc:
+                if self._cut:     # the heartbeat or the transport said so first: in words, not as a socket error
+                    raise ConnectionLost(self._cut) from None
+                if not isinstance(exc, SdoCommunicationError):
+                    raise ConnectionLost(f"lost connection to CANopen node {self.node_id}: its CAN interface "
+                                         f"{self.interface}:{self.channel} failed ({exc})") from None
                 raise self._collision() or ConnectionLost(f"CANopen node {self.node_id} does not answer: {exc}") \
                     from None
             except SdoAbortedError as exc:
                 raise self._collision() or LinkError(f"CANopen node {self.node_id} refused: {exc}",
                                                      ABORT_ERRORS.get(exc.code, 0)) from None
-            except (can.CanError, OSError) as exc:
-                raise ConnectionLost(f"CAN interface {self.interface}:{self.channel}: {exc}") from None
 
     def _exchange(self, message: bytes) -> bytes:
         def transfer(sdo):
             # the node answers a message when it has carried it out (an `advance` of a virtual clock computes
             # first): wait longer than for a parameter; a silent node is still seen by the heartbeat at once
             sdo.RESPONSE_TIMEOUT = max(self.sdo_timeout_s, MESSAGE_TIMEOUT_S)
+            if not (self._producer_ms or self._subscribers):   # a silence is counted from here (N54)
+                self._last_beat = max(self._last_beat or 0.0, time.monotonic())
+            self._long_transfer = True
             try:
                 self._write_domain(sdo, objects.LINK_MESSAGE, message)
                 return self._read_domain(sdo, objects.LINK_MESSAGE)
             finally:
                 sdo.RESPONSE_TIMEOUT = self.sdo_timeout_s
+                self._long_transfer = False
         return self._sdo(transfer)
 
     # DOMAIN objects by block transfer where the node serves it (N14), else segmented
@@ -398,7 +407,7 @@ class CanopenLink(RemoteLink):
     # --- heartbeat consumer --------------------------------------------------------------------------------
     def _on_heartbeat(self, state: int) -> None:
         known = self._last_beat is not None
-        self._last_beat, self._state = _sent_at(self.remote.nmt.timestamp), state
+        self._last_beat, self._state = sent_at(self.remote.nmt.timestamp), state
         self._beat_seen.set()
         if state == 0 and known:       # a boot-up of a node we knew: the drive lost what the link set up
             self._rebooted = True
@@ -416,25 +425,42 @@ class CanopenLink(RemoteLink):
         watched = self._producer_ms or self._subscribers
         if not lost and self._lost and watched and self._silent():
             return
+        if not lost:
+            self._cut = None
         super()._set_connection(lost=lost, text=text)
+
+    def _lose(self, reason: str, event_reason: str) -> None:
+        """The node is gone (no heartbeat, the transport ended): transfers waiting for its answers stop now, in
+        words (a download waited its full 10 s after kill -9 of the drive, then said 'Bad file descriptor')."""
+        self._cut = f"lost connection to CANopen node {self.node_id}: {reason}"
+        for client in self.remote.sdo_channels:
+            client.responses.put(None)
+        self._set_connection(lost=True, text=self.lost_text(event_reason))
 
     def _watchdog(self) -> None:
         while not self._closed.wait(0.05):
+            error = self._transport_error
+            if error is not None:          # the interface ended (the slcan server went away): open it again
+                if not self._lost:
+                    where = f"{self.interface}:{self.channel}"
+                    self._lose(f"its CAN interface {where} failed ({error})", f"CAN interface {where}: {error}")
+                self._reopen()
+                continue
             if self._virtual_clock():
                 continue
+            if self._lost:     # a pause: ask (read-only) until the node answers, whoever subscribes and whatever
+                self._guard()  # heartbeat the node has now (a restarted one has none)
+                if not self._silent():
+                    self._restore("heartbeats again")
+                continue
             if not self._producer_ms:      # no heartbeat of its own: a watching master (one that subscribes, as
-                if not self._subscribers:  # the IDE) asks by node guarding, which changes nothing on the node
-                    continue
+                if not (self._subscribers or self._long_transfer and self._identity is not None):  # the IDE),
+                    continue   # or one waiting up to 10 s for an answer, asks by node guarding, changing nothing
                 self._guard()
-            beat = self._last_beat
-            silent = self._silent()
-            if not self._lost and silent and beat is not None:
-                self._set_connection(lost=True, text=self.lost_text(f"no heartbeat from CANopen node "
-                                                                    f"{self.node_id} for {self.consumer_ms} ms"))
-            elif self._lost and not silent:
-                self._restore("heartbeats again")
-            elif self._lost and self.network.notifier.exception is not None:
-                self._reopen()
+            if self._silent() and self._last_beat is not None:
+                what = "heartbeat" if self._producer_ms else "answer to node guarding"
+                self._lose(f"no {what} for {self.consumer_ms} ms",
+                           f"no {what} from CANopen node {self.node_id} for {self.consumer_ms} ms")
 
     def _guard(self) -> None:
         now = time.monotonic()
@@ -448,7 +474,8 @@ class CanopenLink(RemoteLink):
 
     def _reopen(self) -> None:
         """The transport broke (e.g. the slcan server went away): open it again, once a second."""
-        time.sleep(1.0)
+        if self._closed.wait(1.0):
+            return
         self._disconnect()
         with contextlib.suppress(ConnectionLost):
             self._connect()
@@ -458,6 +485,7 @@ class CanopenLink(RemoteLink):
         PDOs); after a pause (a stopped process) it still has all that. Then say so."""
         rebooted, self._rebooted = self._rebooted, False
         lost, self._lost = self._lost, False      # the set-up below talks to the node
+        cut, self._cut = self._cut, None
         try:
             if rebooted:
                 if self.sdo_channel == 2:       # a restarted node has SDO 2 NOT_VALID again
@@ -466,7 +494,7 @@ class CanopenLink(RemoteLink):
                 if self._stream_request is not None:
                     self._stream(*self._stream_request)
         except LinkError:
-            self._lost, self._rebooted = lost, rebooted
+            self._lost, self._rebooted, self._cut = lost, rebooted, cut
             return
         self._lost = lost
         self._set_connection(lost=False, text=self.restored_text(why) if self.patience_s > 0 else
