@@ -5,7 +5,7 @@ plant, encoder, monitoring) → markers → recording → CAN → interrupts and
 (kernel/controller.py's module docstring). It is one function because a call costs as much as a line of the
 position law, and 32 axes tick 32 000 times per simulated second: the steady state of the common cases runs
 inline — a counter fed by another node's (or its own virtual) master, and an axis locked on its CAM curve
-(`steady_cam_step`) — with the same floating-point operations in the same order as Master.tick, Axis.tick,
+(`steady_cam_tick`) — with the same floating-point operations in the same order as Master.tick, Axis.tick,
 CamMotion.step and Plant.step, which every other case still calls. tests/kernel/test_trace_identity.py holds the
 traces to today's row for row (decisions K127).
 """
@@ -23,11 +23,16 @@ INSTRUCTIONS_PER_TICK = 500  # program speed: machine instructions per ms (docs/
 _floor = math.floor
 
 
-def steady_cam_step(sync, pg) -> bool:
-    """CamMotion.step for a slave locked on its curve in the same master cycle, with no markers, no cycle count
-    to watch and no moved relation (nearly every tick of a CAM line); False, having changed nothing, otherwise."""
+def steady_cam_tick(axis) -> bool:
+    """Axis.tick of an axis in CAM mode locked on its curve in the same master cycle, with no markers, no cycle
+    count to watch, no moved relation, no homing and the control on (nearly every tick of a CAM line): CamMotion.step
+    and the rest of Axis.tick inline; False, having changed nothing, in any other case."""
+    sync = axis.sync
     if (sync.state is not CURVE or not sync.locked or sync.markers is not None or sync.finish is not None
-            or (sync.cycles and not sync._final)):
+            or (sync.cycles and not sync._final) or not axis.control_on or axis.homing is not None):
+        return False
+    plant = axis.plant
+    if type(plant) is not Plant:
         return False
     cam = sync.cam
     data, master = cam.data, cam.master
@@ -54,46 +59,44 @@ def steady_cam_step(sync, pg) -> bool:
     vt = t - last
     if abs(vt) > sync.vel * (1 + 1e-9):
         return False  # unlocks: CamMotion._follow
+    # CamMotion.step, locked on the curve
     sync.ticks += 1
     sync._last_m = m
     sync._prev_t = last
     sync._last_t = sync.target = t
+    pg = axis.profile
     v0 = pg.velocity
     pg.position = t
     pg.acceleration = vt - v0
     pg.velocity = vt
-    return True
-
-
-def _axis_after_cam_step(axis, pg) -> None:
-    """Axis.tick after the CAM step in CAM mode with the control on, no homing (the motion is not finished)."""
+    # the position law, every TIMER ms (kernel/axis.py)
     g = axis.gains
     ticks = axis._tick + 1
-    if ticks >= g.timer:  # the position law, every TIMER ms (kernel/axis.py)
+    if ticks >= g.timer:
         axis._tick = 0
-        e = pg.position - axis.apos
+        e = t - axis.apos
         if g.window and axis._posfloat(pg, e):
             reference = 0.0
         else:
             reference = g.bandwidth_1000 * (g.kprop_1000 * e + (axis._integral_term(e) if g.integrating else 0.0))
             if g.ffvel:
-                reference += g.ffvel_1000 * pg.velocity
+                reference += g.ffvel_1000 * vt
             if g.kder:
-                reference -= g.kder_1000 * axis.plant.velocity
+                reference -= g.kder_1000 * plant.velocity
             if g.ffacc:
                 reference += g.ffacc_1000 * pg.acceleration
         axis.reference = reference
     else:
         axis._tick = ticks
         reference = axis.reference
-    plant = axis.plant
     cfg = plant.config
-    if cfg.blocked:  # Plant.step inline
+    if cfg.blocked:  # Plant.step
         plant.velocity = 0.0
     else:
         limit = cfg.speed_limit * axis.scaling.vmax
         ref = limit if reference > limit else (-limit if reference < -limit else reference)
-        v = plant.velocity + (ref - plant.velocity) * plant._alpha
+        v = plant.velocity
+        v = v + (ref - v) * plant._alpha
         if cfg.friction:
             v = math.copysign(max(abs(v) - cfg.friction, 0.0), v)
         plant.velocity = v
@@ -101,11 +104,11 @@ def _axis_after_cam_step(axis, pg) -> None:
     origin = axis.origin
     axis.apos = apos = _floor(plant.position) - origin
     axis.raw_history.append(apos + origin)
-    if axis.control_on:
-        if abs(pg.position - apos) > axis.gains.poserr:
-            axis._monitor()
-        else:
-            axis._poserr_count = 0
+    if abs(t - apos) > g.poserr:  # Axis._monitor's common case inline
+        axis._monitor()
+    else:
+        axis._poserr_count = 0
+    return True
 
 
 def controller_tick(ctl) -> None:
@@ -128,10 +131,7 @@ def controller_tick(ctl) -> None:
         else:
             master.tick(time_ms)
         axis = ctl.axis
-        if (axis.mode == "cam" and axis.control_on and axis.homing is None and type(axis.plant) is Plant
-                and steady_cam_step(axis.sync, axis.profile)):
-            _axis_after_cam_step(axis, axis.profile)
-        else:
+        if axis.mode != "cam" or not steady_cam_tick(axis):
             axis.tick()
         markers = ctl.markers
         sync = axis.sync
@@ -161,13 +161,23 @@ def controller_tick(ctl) -> None:
         ctl.raise_error(exc)
     if ctl.recorder.active is not None:
         ctl.recorder.sample(ctl._read_sysvar_for_recording)
-    ctl.can.tick(time_ms)
+    can = ctl.can
+    if (can.inbox or can.busy or can.heartbeat_ms or can.pdo.active or can.sdo.channels
+            or (can.own_bus and (can.bus.pending or can.bus.injected))):  # CanPort.tick's idle test inline
+        can.tick(time_ms)
     if ctl.program_state == "running":  # a slice of the program (inline: every tick)
         vm = ctl.vm
         try:
             if ctl.interrupts.sources or ctl.error:
                 ctl._serve_interrupts(vm)
-            vm.run(INSTRUCTIONS_PER_TICK)
+            wait = vm.wait
+            if wait is None or vm.ended:
+                vm.run(INSTRUCTIONS_PER_TICK)
+            elif wait.done():  # VM.run's test of the wait inline: a waiting program costs one test per tick
+                vm.wait = None
+                if wait.value is not None:
+                    vm.stack.append(wait.value)
+                vm.run(INSTRUCTIONS_PER_TICK)
         except ControllerError as exc:
             ctl.raise_error(exc)
         except Exception as exc:  # noqa: BLE001 - a fault of the simulator itself (decisions K81)
