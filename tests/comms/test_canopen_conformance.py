@@ -138,3 +138,31 @@ def test_reset_node_powers_the_controller_off_and_on(tmp_path):
         finally:
             link.close()
             client.shutdown()
+
+
+@pytest.mark.parametrize("command", [0x82, 0x81], ids=["reset-communication", "reset-node"])
+def test_a_reset_disables_the_second_sdo_server_again(bus, command):
+    """CiA 301 7.3.2.2.2: the communication objects take their power-on values; 0x1201's is NOT_VALID (DG 7329-7331,
+    decisions N51/N52). Before, Reset Communication left SDO 2 enabled."""
+    def sdo2_answers() -> bool:
+        bus.send(can.Message(arbitration_id=0x101, is_extended_id=False, data=bytes([0x40, 0, 0x10, 0, 0, 0, 0, 0])))
+        end = time.monotonic() + 1.0
+        while time.monotonic() < end:
+            msg = bus.recv(0.2)
+            if msg is not None and msg.arbitration_id == 0x681:
+                return True
+        return False
+
+    for sub, cob in ((1, 0x101), (2, 0x681)):
+        assert abort_code(sdo_write(bus, 0x1201, sub, cob.to_bytes(4, "little"))) is None
+    assert sdo2_answers()
+    nmt(bus, command)
+    end = time.monotonic() + 10
+    while time.monotonic() < end:      # the boot-up message
+        msg = bus.recv(0.5)
+        if msg is not None and msg.arbitration_id == 0x701 and bytes(msg.data) == b"\x00":
+            break
+    else:
+        raise AssertionError("no boot-up message after the reset")
+    assert [int.from_bytes(sdo_read(bus, 0x1201, sub)[4:8], "little") for sub in (1, 2)] == [0x80000101, 0x80000681]
+    assert not sdo2_answers()

@@ -66,6 +66,15 @@ class ControllerNode(canopen.LocalNode):
             if server.rx_cobid == cob_id:
                 server.forget_transfer()
 
+    def reset_communication(self) -> None:
+        """NMT Reset Communication / Reset Node: 0x1201 takes its power-on value, NOT_VALID (CiA 301 7.3.2.2.2, N52),
+        before the controller sees the command (the kernel resets the other communication objects, N51). Called with
+        the drive's lock held or not."""
+        with self.drive.lock:
+            for sub, base in ((1, SDO2_RX), (2, SDO2_TX)):
+                objdict.write(self.controller, 0x1201, sub, NOT_VALID | base + self.id, "sdo")
+        self.sdo2.forget_transfer()
+
     @property
     def sdo2_valid(self) -> bool:
         """SDO server 2 answers once a master or the program cleared NOT_VALID in both COB-IDs (DG 7327-7337)."""

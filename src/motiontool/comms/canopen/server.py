@@ -73,6 +73,7 @@ class CanopenDrive:
 
     def _out(self, frame: CanFrame) -> None:
         """Called in the tick (under the drive's lock): the bus only queues the message."""
+        self._nmt_reset(frame)         # a controller's program may reset its neighbours
         with contextlib.suppress(can.CanError):
             self._bridge.send(to_message(frame))
 
@@ -80,7 +81,17 @@ class CanopenDrive:
         while not self._closed.is_set():
             msg = self._bridge.recv(timeout=0.2)
             if msg is not None and not msg.is_error_frame:
-                self._can_bus.inject(to_frame(msg))
+                frame = to_frame(msg)
+                self._nmt_reset(frame)       # before the controllers boot up: a master waits for the boot-up
+                self._can_bus.inject(frame)
+
+    def _nmt_reset(self, frame: CanFrame) -> None:
+        """NMT Reset Node / Communication (82 or 81, node or 0 for all) reaches the nodes' SDO servers too."""
+        if frame.can_id or frame.extended or frame.rtr or len(frame.data) < 2 or frame.data[0] not in (0x81, 0x82):
+            return
+        for n, node in self.nodes.items():
+            if frame.data[1] in (0, n):
+                node.reset_communication()
 
     def close(self) -> None:
         self._closed.set()
