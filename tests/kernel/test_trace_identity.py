@@ -13,7 +13,9 @@ import json
 
 import pytest
 
-from tests.kernel.trace_identity import GOLDEN, runs
+from motiontool.kernel import tick
+from motiontool.kernel.plant import PlantConfig
+from tests.kernel.trace_identity import GOLDEN, cam_bus, row, runs
 
 GOLDEN_RUNS = json.loads(GOLDEN.read_text(encoding="utf-8"))
 RUNS = dict(runs())
@@ -30,3 +32,35 @@ def test_trace_is_identical_row_for_row(name: str):
     first = next((i for i, (a, b) in enumerate(zip(got["seconds"], want["seconds"], strict=True)) if a != b), None)
     assert first is None, f"{name}: the trace differs in second {first} (ms {first * 1000}..{first * 1000 + 999})"
     assert (got["prints"], got["print_count"]) == (want["prints"], want["print_count"]), f"{name}: PRINT output"
+
+
+# the position law's other terms, a slower law, the control window, a drive with friction or blocked, POSERRTIME
+VARIANTS = {
+    "I and D terms, FFACC": ({"KINT": 200, "KILIM": 500, "KDER": 300, "FFACC": 200}, None),
+    "TIMER 3": ({"TIMER": 3, "KPROP": 60}, None),
+    "control window": ({"REGWMIN": 5, "REGWMAX": 50}, None),
+    "friction": ({}, PlantConfig(friction=0.3, speed_tau_ms=9.0)),
+    "blocked drive, POSERRTIME": ({"POSERR": 300, "POSERRTIME": 400}, PlantConfig(blocked=True)),
+}
+
+
+@pytest.mark.parametrize("name", sorted(VARIANTS))
+def test_the_fused_cam_tick_equals_the_general_one(name: str, monkeypatch):
+    """kernel/tick.py's steady CAM tick against Axis.tick + CamMotion.step + Plant.step on settings the golden
+    runs do not vary: the same rows, every ms, on both axes of a two-node line."""
+    settings, plant = VARIANTS[name]
+
+    def rows() -> list:
+        bus = cam_bus(2, settings=settings, plant=plant)
+        controllers = [bus.simulation[n] for n in bus.nodes]
+        out = []
+        for _ in range(3000):
+            bus.advance(1)
+            out.append([row(c) for c in controllers])
+        return out
+
+    fused = rows()
+    with monkeypatch.context() as m:
+        m.setattr(tick, "steady_cam_tick", lambda axis: False)
+        general = rows()
+    assert fused == general

@@ -127,15 +127,16 @@ def cam_program(size: int, master: bool) -> str:
             f"{VIRTUAL_MASTER if master else ''}SYNCC 0\nSYNCCSTART 0\nWAITI 8 ON\n")
 
 
-def cam_bus(axes: int, interpolation: bool = False) -> EmbeddedBus:
+def cam_bus(axes: int, interpolation: bool = False, settings: dict | None = None, plant=None) -> EmbeddedBus:
     values = encode(Curve("stamping", 4000, CAM_POINTS, interpolation=interpolation, intervals=40))
-    bus = EmbeddedBus(range(1, axes + 1), master_node=1)
+    nodes = range(1, axes + 1)
+    bus = EmbeddedBus(dict.fromkeys(nodes, plant) if plant else nodes, master_node=1)
     for node in bus.nodes:
         link = bus.link(node)
         result = compile_source(cam_program(len(values), node == 1), "cam.m")
         assert result.ok
         link.call("restore_arrays", arrays=[{"name": "stamping", "values": values}])
-        for key, value in CAM_SETTINGS.items():
+        for key, value in {**CAM_SETTINGS, **(settings or {})}.items():
             link.write_parameter(key, value)
         link.download(result.image.to_bytes())
         link.start()

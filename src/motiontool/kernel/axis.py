@@ -104,6 +104,7 @@ class Axis:
 
     # --- one control tick -----------------------------------------------------------------------------
     def tick(self) -> None:
+        # kernel/tick.py repeats the CAM case (steady_cam_tick) operation for operation: change both
         pg = self.profile
         control_on = self.control_on
         if control_on:

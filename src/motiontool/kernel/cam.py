@@ -357,6 +357,7 @@ class CamMotion:
         return self.base + self.cam.curve.periodic(m) * self.k
 
     def step(self, pg) -> None:
+        # kernel/tick.py repeats the locked CURVE case (steady_cam_tick) operation for operation: change both
         self.ticks += 1
         if self.markers is not None:  # marker corrections inside the correction window (kernel/cam_markers.py)
             self.markers.realise()

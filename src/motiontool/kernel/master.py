@@ -121,6 +121,7 @@ class Master:
 
     # --- one tick -------------------------------------------------------------------------------------------
     def tick(self, time_ms: int) -> None:
+        # kernel/tick.py repeats the fed counter's case (controller_tick): change both
         if self.virtual:
             v, target, acc = self.virtual_speed, self.virtual_target, self.virtual_acc
             if acc <= 0 or abs(target - v) <= acc:

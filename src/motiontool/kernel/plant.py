@@ -48,7 +48,8 @@ class Plant:
         self._alpha = 1.0 - math.exp(-1.0 / max(self.config.speed_tau_ms, 1e-6))
 
     def step(self, speed_reference: float, vmax: float) -> None:
-        """One millisecond: the speed follows the reference with the drive's lag, the position integrates."""
+        """One millisecond: the speed follows the reference with the drive's lag, the position integrates
+        (kernel/tick.py repeats it for a CAM axis: change both)."""
         cfg = self.config
         if cfg.blocked:
             self.velocity = 0.0

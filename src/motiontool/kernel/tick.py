@@ -57,8 +57,8 @@ def steady_cam_tick(axis) -> bool:
     t = sync.base + (y + cycle * curve.slave_length) * sync.k
     last = sync._last_t
     vt = t - last
-    if abs(vt) > sync.vel * (1 + 1e-9):
-        return False  # unlocks: CamMotion._follow
+    if not abs(vt) <= sync.vel * (1 + 1e-9):
+        return False  # unlocks (or is not a number): CamMotion._follow
     # CamMotion.step, locked on the curve
     sync.ticks += 1
     sync._last_m = m
