@@ -156,6 +156,6 @@ def test_free_run_of_four_txpdos_at_1_khz_over_the_slcan_drive_process():
             assert [row[2] for p in packets for row in p["values"]] == times    # sys_clock = the stamp
             cpos = [row[1] for p in packets for row in p["values"]]
             assert cpos[-1] > cpos[0] and cpos == sorted(cpos)                 # the axis moves forward
-            assert packets[-1]["dropped"] == 0 and link.stream.rows_dropped == 0
+            assert packets[-1]["dropped"] == 0 and link.pdo_stream.rows_dropped == 0
         finally:
             link.close()

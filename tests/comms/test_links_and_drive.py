@@ -117,7 +117,7 @@ def test_a_drive_node_answers_a_repeated_request_from_its_cache():
 def test_remote_link_carries_requests_and_polls_events_in_order(local_link):
     drive = VirtualDrive([1, 2], clock="virtual")
     link = local_link(drive, 2)
-    assert link.identify()["node"] == 2 and link.virtual_time
+    assert link.identify().node == 2 and link.virtual_time
     seen = []
     link.subscribe(lambda e: seen.append(e.text) if e.kind == "print" else None)
     link.download(image('i = 0\nWHILE i < 100 DO\n  PRINT "n", i\n  i = i + 1\nENDWHILE\n').to_bytes())

@@ -27,7 +27,8 @@ from motiontool.apc.clock import PosClock
 from motiontool.apc.drive import ApcDrive
 from motiontool.apc.readpars import parameter_number
 from motiontool.comms.embedded import EmbeddedLink
-from motiontool.comms.protocol import OPERATIONS, PROTOCOL_VERSION, LinkEvent, Request, Response, Status
+from motiontool.comms.operations import OPERATIONS
+from motiontool.comms.protocol import PROTOCOL_VERSION, LinkEvent, Request, Response, Status
 
 PROGRAM_OPS = ("download", "start", "break", "continue", "list_programs", "delete_program", "set_autostart",
                "power_on", "set_breakpoints", "step", "read_variables", "write_variable", "restore_arrays",

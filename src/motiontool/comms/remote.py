@@ -25,6 +25,7 @@ import time
 from collections.abc import Callable
 from typing import Any
 
+from motiontool.comms.client import Identity
 from motiontool.comms.link import Link
 from motiontool.comms.protocol import ConnectionLost, LinkError, LinkEvent, Request
 from motiontool.comms.wire import DAMAGED_REQUEST, WireError, decode_response, encode_request
@@ -54,7 +55,7 @@ class RemoteLink(Link):
         self._lost_since: float | None = None
         self.patience_s = 0.0                       # how long a lost connection may last before requests fail
         self._poller: threading.Thread | None = None
-        self._identity: dict | None = None
+        self._identity: Identity | None = None
 
     # --- requests -------------------------------------------------------------------------------------
     @property
@@ -130,16 +131,16 @@ class RemoteLink(Link):
         self._publish(LinkEvent("connection", 0, text or (self.lost_text("no answer") if lost
                                                           else self.restored_text())))
 
-    def identify(self) -> dict:
-        if self._identity is None:
-            self._identity = self.call("identify")
+    def identify(self) -> Identity:
+        if self._identity is None:       # asked once: it does not change while the link is open
+            self._identity = super().identify()
         return self._identity
 
     @property
     def virtual_time(self) -> bool:
         """True when the controller's clock moves only on `advance` (a virtual drive started with a virtual
         clock)."""
-        return self.identify().get("clock") == "virtual"
+        return self.identify().clock == "virtual"
 
     # --- events ---------------------------------------------------------------------------------------
     def subscribe(self, callback: Callable[[LinkEvent], None]) -> None:

@@ -10,7 +10,8 @@ from typing import Any
 
 from motiontool.aposs.image import ImageError, ProgramImage
 from motiontool.comms import scope_recording
-from motiontool.comms.protocol import OPERATIONS, PROTOCOL_VERSION, LinkEvent, Request, Response, Status
+from motiontool.comms.operations import OPERATIONS
+from motiontool.comms.protocol import PROTOCOL_VERSION, LinkEvent, Request, Response, Status
 from motiontool.kernel import fc300
 from motiontool.kernel.arrays import MAX_ARRAY_ELEMENTS
 from motiontool.kernel.controller import Controller, Event

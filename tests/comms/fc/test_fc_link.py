@@ -67,7 +67,7 @@ def test_the_extension_carries_the_other_requests_and_events(served):
     assert link.adr == 0xA0
     try:
         ident = link.identify()
-        assert ident["node"] == 32 and ident["drive"] == "motiontool virtual drive"
+        assert ident.node == 32 and ident.drive == "motiontool virtual drive"
         big = "\n".join(f'PRINT "line {i}"' for i in range(300)) + "\n"
         result = compile_source(big, "big.m")
         link.download(result.image.to_bytes(), name="big")                  # many chunks
@@ -286,7 +286,7 @@ def test_a_late_refusal_of_a_parameter_is_not_the_drive_refusing_the_extension()
     line = MeddlingLine(late_refusal)
     link = FcLink(FcBus(BusSettings(line.path, timeout_s=0.1)), 1)
     try:
-        assert link.identify()["node"] == 1
+        assert link.identify().node == 1
         assert link.status().program_state == "idle"
     finally:
         link.close()

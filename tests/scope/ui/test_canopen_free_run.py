@@ -52,4 +52,4 @@ def test_free_run_over_canopen_draws_pdo_data_and_shows_the_lost_count(qtbot, li
     assert x is not None and x.size > 10                          # drawn live
     click(qtbot, window, window.stop_action)
     assert "[PDO" not in window.windowTitle()
-    assert not link.stream.running
+    assert not link.pdo_stream.running

@@ -117,7 +117,7 @@ class CanopenLink(RemoteLink):
         self._connect()
         if sdo_channel == 2:
             self._enable_sdo2()
-        self.stream = PdoStream(self.remote.sdo, self.network, node, self.od, self._publish)
+        self.pdo_stream = PdoStream(self.remote.sdo, self.network, node, self.od, self._publish)
         self._configure()
         self._watch = threading.Thread(target=self._watchdog, name="canopen-heartbeat", daemon=True)
         self._watch.start()
@@ -149,8 +149,8 @@ class CanopenLink(RemoteLink):
         self.remote.nmt.add_heartbeat_callback(self._on_heartbeat)
         # our adapter does not hand us our own frames: a request on our channel is another master's
         self.network.subscribe(self.remote.sdo.rx_cobid, self._on_foreign_request)
-        if hasattr(self, "stream"):      # a new transport: the link sets the node up again when it answers
-            self.stream.sdo, self.stream.network = self.remote.sdo, self.network
+        if hasattr(self, "pdo_stream"):      # a new transport: the link sets the node up again when it answers
+            self.pdo_stream.sdo, self.pdo_stream.network = self.remote.sdo, self.network
             self._rebooted = True
 
     def _on_transport_error(self, exc: Exception) -> None:
@@ -396,9 +396,9 @@ class CanopenLink(RemoteLink):
             try:
                 if signals:
                     self._make_operational()
-                    self.stream.start(signals, interval_ms)
+                    self.pdo_stream.start(signals, interval_ms)
                 else:
-                    self.stream.stop()
+                    self.pdo_stream.stop()
             except SdoCommunicationError as exc:
                 raise ConnectionLost(f"CANopen node {self.node_id} does not answer: {exc}") from None
             except SdoAbortedError as exc:
@@ -470,7 +470,7 @@ class CanopenLink(RemoteLink):
                 self.network.send_message(0x700 + self.node_id, b"", remote=True)
 
     def _virtual_clock(self) -> bool:
-        return bool(self._identity) and self._identity.get("clock") == "virtual"
+        return self._identity is not None and self._identity.clock == "virtual"
 
     def _reopen(self) -> None:
         """The transport broke (e.g. the slcan server went away): open it again, once a second."""
@@ -502,7 +502,7 @@ class CanopenLink(RemoteLink):
 
     def close(self) -> None:
         if not self._closed.is_set() and not self._lost:
-            if self.stream.running:
+            if self.pdo_stream.running:
                 with contextlib.suppress(LinkError):
                     self._stream([], 1)
             self._restore_node()
