@@ -116,10 +116,10 @@ class ArrayList:
         """Read every array and parameter. Without a template the rows are the controller's items; with one,
         the template's rows get the controller's values and items missing on the controller turn green."""
         live: dict[tuple, int | float] = {}
-        arrays = link.call("list_arrays")
+        arrays = link.list_arrays()
         for info in arrays:
-            for i, value in enumerate(link.read_array(info["index"]), start=1):
-                live[("Array", info["index"], i)] = value
+            for i, value in enumerate(link.read_array(info.index), start=1):
+                live[("Array", info.index, i)] = value
         param_records = []
         for p in database():
             if not parameters and not p.number.startswith("19-"):
@@ -130,8 +130,8 @@ class ArrayList:
                 live[record.key] = p.from_raw(link.read_parameter(p.number))
         if self.template is None:
             rows = [Row(r) for r in param_records]
-            rows += [Row(Record("Array", info["index"], i, info["name"] if i == 1 else ""))
-                     for info in arrays for i in range(1, info["size"] + 1)]
+            rows += [Row(Record("Array", info.index, i, info.name if i == 1 else ""))
+                     for info in arrays for i in range(1, info.size + 1)]
             self.rows = rows
         for row in self.rows:
             if row.heading:
@@ -155,9 +155,9 @@ class ArrayList:
             if row.record.kind == "Array":
                 arrays.setdefault(row.record.array, []).append(row)
         if self.structure_changed:
-            link.call("restore_arrays", arrays=[
-                {"name": rows[0].record.name or f"array{k}",
-                 "values": [int(r.pending if r.pending is not None else (r.controller or 0)) for r in rows]}
+            link.restore_arrays([
+                (rows[0].record.name or f"array{k}",
+                 [int(r.pending if r.pending is not None else (r.controller or 0)) for r in rows])
                 for k, rows in sorted(arrays.items())])
         else:
             for k, rows in sorted(arrays.items()):

@@ -90,7 +90,7 @@ def _run_point(job: SweepJob, values: tuple[int, ...]) -> Row:
             except LinkError as exc:
                 return (), one_line(f"{key}={value}: {exc}")
         if signals:
-            link.call("stream", signals=signals, interval_ms=job.interval_ms)
+            link.stream(signals, interval_ms=job.interval_ms)
         link.download(job.image, name=job.name)
         link.start()
         total, elapsed = int(job.seconds * 1000), 0
@@ -101,7 +101,7 @@ def _run_point(job: SweepJob, values: tuple[int, ...]) -> Row:
             link.flush_events()
             if errors or link.status().program_state != "running":
                 break
-        link.call("stream", signals=[], interval_ms=1)  # sends the samples still buffered
+        link.stream([], interval_ms=1)  # sends the samples still buffered
         link.flush_events()
     finally:
         close()

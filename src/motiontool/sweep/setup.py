@@ -78,7 +78,7 @@ def _try_on_controller(job: SweepJob) -> None:
         for n, text in enumerate(job.measures, start=1):
             for name in parse(text).signals:
                 where = f"{_measure(text, n)}, position {text.find(name) + 1}"
-                _ask(where, lambda s: link.call("stream", signals=[s], interval_ms=1), name)
+                _ask(where, lambda s: link.stream([s], interval_ms=1), name)
     finally:
         close()
 
