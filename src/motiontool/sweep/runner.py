@@ -66,9 +66,19 @@ def one_line(text: str) -> str:
     return " ".join(str(text).split())
 
 
-def _run_point(job: SweepJob, values: tuple[int, ...]) -> Row:
-    measures = [parse(text) for text in job.measures]
-    signals = job.signals()
+@dataclass
+class Recorded:
+    """One point's run as recorded: times in ms from the program's start and each signal's values."""
+    t: np.ndarray
+    series: dict[str, np.ndarray]
+    errors: list[str]              # the controller's first error, with its line
+    refused: str = ""              # a varied or --set value the controller refused: nothing ran
+
+
+def record_run(job: SweepJob, values: Sequence[int], signals: Sequence[str]) -> Recorded:
+    """Run `job` at one point on a fresh controller, recording `signals` every `job.interval_ms` (the sweep
+    records the measures' signals; the IDE's sweep view opens a point's run in the scope with more)."""
+    signals = list(signals)
     times, samples = array("d"), array("d")  # 8 bytes a value, no object per row: an hour of 3 signals is 115 MB
     errors: list[str] = []
 
@@ -88,7 +98,7 @@ def _run_point(job: SweepJob, values: tuple[int, ...]) -> Row:
             try:
                 link.write_parameter(key, value)
             except LinkError as exc:
-                return (), one_line(f"{key}={value}: {exc}")
+                return Recorded(np.zeros(0), {}, [], one_line(f"{key}={value}: {exc}"))
         if signals:
             link.stream(signals, interval_ms=job.interval_ms)
         link.download(job.image, name=job.name)
@@ -107,11 +117,18 @@ def _run_point(job: SweepJob, values: tuple[int, ...]) -> Row:
         close()
     t = np.frombuffer(times, dtype=float) - time_base
     table = np.frombuffer(samples, dtype=float).reshape(len(times), len(signals))
-    series = {name: table[:, k] for k, name in enumerate(signals)}
-    out, problems = [], list(errors)
+    return Recorded(t, {name: table[:, k] for k, name in enumerate(signals)}, errors)
+
+
+def _run_point(job: SweepJob, values: tuple[int, ...]) -> Row:
+    measures = [parse(text) for text in job.measures]
+    run = record_run(job, values, job.signals())
+    if run.refused:
+        return (), run.refused
+    out, problems = [], list(run.errors)
     for n, measure in enumerate(measures, start=1):
         try:
-            out.append(format_value(evaluate(measure, t, series)))
+            out.append(format_value(evaluate(measure, run.t, run.series)))
         except EvaluationError as exc:
             out.append("")
             problems.append(f"measure {n}: {exc}")
