@@ -83,7 +83,8 @@ def build_menus(w) -> None:
             ("&Diagnostic Report...", None, lambda: cm.diagnostic_report(w)),
         ]),
         ("&Tools", [("&CAM-Editor", None, lambda: _cam_editor(w)), ("&Array Editor", None, lambda: _array_editor(w)),
-                    ("&Oscilloscope", None, lambda: _scope(w)), ("&I/O Panel", None, lambda: _io_panel(w))]),
+                    ("&Oscilloscope", None, lambda: _scope(w)), ("&I/O Panel", None, lambda: _io_panel(w)),
+                    ("&Sweep Results...", None, lambda: _sweep_results(w))]),
         ("&Settings", [
             ("&Editor...", None, lambda: _editor_settings(w)), ("&Compiler...", None, lambda: _compiler_settings(w)),
             ("Open last file", None, "open_last"),
@@ -221,6 +222,12 @@ def _io_panel(w) -> None:
     from motiontool.ui.io_panel import io_panel
 
     io_panel(w)
+
+
+def _sweep_results(w) -> None:
+    from motiontool.ui.sweep_view import open_sweep_results
+
+    open_sweep_results(w)
 
 
 def _array_editor(w) -> None:
