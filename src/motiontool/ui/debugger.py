@@ -88,7 +88,7 @@ class Debugger(QObject):
             link.download(image.to_bytes(), name=image.name, stack_size=dev.compiler_settings().stack_size)
             messages.ide(f"Loading {size} bytes ok")
             editor.set_debug_lines({e.line for e in image.lines if e.file == 0})
-            link.call("set_breakpoints", lines=[n for n in editor.breakpoints() if n in editor.debug_lines])
+            link.set_breakpoints([n for n in editor.breakpoints() if n in editor.debug_lines])
             link.start(step=True)
         except LinkError as exc:
             editor.end_debug()
@@ -114,7 +114,7 @@ class Debugger(QObject):
         """Singlestep F9 (DG L2440-2442): run the yellow statement, stop before the next one."""
         if self.active:
             self.editor.set_debug_current(None)
-            self._call(lambda link: link.call("step"))
+            self._call(lambda link: link.step())
 
     def end(self) -> None:
         """End Debug (DG L2448-2450): leave debug mode; breakpoints stay for the next run."""
@@ -129,7 +129,7 @@ class Debugger(QObject):
             try:
                 if link.status().program_state in ("running", "break"):
                     link.break_program()
-                link.call("set_breakpoints", lines=[])
+                link.set_breakpoints([])
             except LinkError as exc:
                 self._report(exc)
         self.w.messages.ide("Debug ended")
@@ -146,8 +146,8 @@ class Debugger(QObject):
         self.w.bridge.poll()
 
     def _send_breakpoints(self) -> None:
-        self._call(lambda link: link.call("set_breakpoints",
-                                          lines=[n for n in self.editor.breakpoints() if n in self.editor.debug_lines]))
+        self._call(lambda link: link.set_breakpoints(
+            [n for n in self.editor.breakpoints() if n in self.editor.debug_lines]))
 
     def _status_changed(self, status) -> None:
         if not self.active:
@@ -167,8 +167,8 @@ class Debugger(QObject):
         if kind == "parameter":
             return link.read_parameter(key)
         if kind == "signal":
-            return link.call("read_signals", signals=[key])[0]
-        return link.call("read_variables", names=[key])[0]
+            return link.read_signals([key])[0]
+        return link.read_variables([key])[0]
 
     def write_watch(self, kind: str, key: str, text: str) -> str | None:
         """A value typed into the Watch pane: a program variable or a parameter (checked against its range
@@ -183,7 +183,7 @@ class Debugger(QObject):
                 parameter = database().get(key)
                 link.write_parameter(key, parameter.to_raw(parameter.validate(text)))
             elif kind == "variable":
-                link.call("write_variable", name=key, value=parse_value(text))
+                link.write_variable(key, parse_value(text))
             else:
                 return f"{key} is read from the controller and cannot be set"
         except (ValueError, KeyError, LinkError) as exc:
@@ -196,7 +196,7 @@ class Debugger(QObject):
         if link is None:
             return None
         try:
-            return format_value(link.call("read_variables", names=[name])[0])
+            return format_value(link.read_variables([name])[0])
         except LinkError:
             return None
 
@@ -214,7 +214,7 @@ class Debugger(QObject):
             self.w.messages.ide(f"Change value: {text!r} is not a number")
             return False
         try:
-            self._link().call("write_variable", name=name, value=value)
+            self._link().write_variable(name, value)
         except (LinkError, AttributeError) as exc:
             self._report(exc)
             return False
