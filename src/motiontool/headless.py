@@ -18,6 +18,7 @@ from motiontool.aposs.driver import compile_source
 from motiontool.cameditor.transfer import download_config
 from motiontool.cameditor.zbc import ConfigError, read_config
 from motiontool.cliargs import BadNumber, parse_input, parse_setting, shown
+from motiontool.comms.client import ControllerClient
 from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.eventorder import TimeOrder
 from motiontool.comms.links import LinkSpecError, parse_link_spec
@@ -184,7 +185,7 @@ def prepare_link(link, config, settings: list[str], inputs: list[str], options, 
             return False
         try:  # the controller refuses inputs it does not have
             number, value, time_ms = scheduled
-            link.call("schedule_input", number=number, value=value, time_ms=time_base + time_ms)
+            link.schedule_input(number, value, time_base + time_ms)
         except LinkError as exc:
             print(f"motiontool run: --input {spec}: {exc}", file=err)
             return False
@@ -237,13 +238,13 @@ def run_program(path: Path | None, options: RunOptions, out: TextIO | None = Non
             return EXIT_REFUSED
         if options.trace:  # the writer first: a running clock (--realtime) sends samples at once
             trace = TraceWriter(options.trace, [1], options.signals)
-            link.call("stream", signals=options.signals, interval_ms=options.trace_interval_ms)
+            link.stream(options.signals, interval_ms=options.trace_interval_ms)
         link.download(image.to_bytes(), name=image.name)
         link.start()
         run_until_stopped([link], options, time_base, output, lambda: trace is not None and trace.error is not None)
         output.flush()
         if trace is not None:
-            link.call("stream", signals=[], interval_ms=1)
+            link.stream([], interval_ms=1)
             link.flush_events()
             trace.commit()
             trace = None
@@ -316,15 +317,15 @@ def _write_csv(path: Path, header: list[str], rows: list[list]) -> None:
     atomic_write_text(path, "\n".join(lines) + "\n")
 
 
-def _write_recordings(link, path: Path) -> None:
+def _write_recordings(link: ControllerClient, path: Path) -> None:
     """Every TESTSETP recording as CSV: time_ms + one named column per recorded index; several
     recordings go to PATH, PATH-2.csv, … in the order they were started."""
-    recordings = link.call("list_recordings")
+    recordings = link.list_recordings()
     for n, info in enumerate(recordings):
-        rec = link.call("upload_recording", index=info["index"])
+        rec = link.upload_recording(info.index)
         target = path if n == 0 else path.with_name(f"{path.stem}-{n + 1}{path.suffix}")
-        names = [f"{name} [{index}]" for name, index in zip(rec["names"], rec["indices"], strict=True)]
-        rows = [[rec["start_ms"] + k * rec["interval_ms"], *sample] for k, sample in enumerate(rec["samples"])]
+        names = [f"{name} [{index}]" for name, index in zip(rec.names, rec.indices, strict=True)]
+        rows = [[rec.start_ms + k * rec.interval_ms, *sample] for k, sample in enumerate(rec.samples)]
         _write_output(target, ["time_ms", *names], rows)
     if not recordings:  # still a file, so a script finds what it asked for
         _write_output(path, ["time_ms"], [])
@@ -402,7 +403,7 @@ def run_nodes(path: Path | None, options: RunOptions, out: TextIO | None = None,
         if options.trace:
             trace = TraceWriter(options.trace, nodes, options.signals)
             for n in nodes:
-                links[n].call("stream", signals=options.signals, interval_ms=options.trace_interval_ms)
+                links[n].stream(options.signals, interval_ms=options.trace_interval_ms)
         for n in nodes:
             links[n].download(images[n].to_bytes(), name=images[n].name)
             links[n].start()
@@ -412,7 +413,7 @@ def run_nodes(path: Path | None, options: RunOptions, out: TextIO | None = None,
         output.flush()
         if trace is not None:
             for n in nodes:
-                links[n].call("stream", signals=[], interval_ms=1)
+                links[n].stream([], interval_ms=1)
                 links[n].flush_events()
             trace.commit()
             trace = None

@@ -121,10 +121,10 @@ def run_dpl(path: Path | None, options: RunOptions, err: TextIO) -> int:
                 print(f"motiontool run: --set {f'{n}:' if several else ''}{key}={value}: {exc}", file=err)
                 return EXIT_REFUSED
         for at, n, name, value in inputs:
-            links[n].call("schedule_input", number=name, value=value, time_ms=at)
+            links[n].schedule_input(name, value, at)
         for n, link in links.items():
             if options.trace:
-                link.call("stream", signals=signals, interval_ms=options.trace_interval_ms)
+                link.stream(signals, interval_ms=options.trace_interval_ms)
             link.download(DplImage(str(programs[n]), checked[n].source).to_bytes(), name=programs[n].name)
         for link in links.values():
             link.start()
@@ -135,7 +135,7 @@ def run_dpl(path: Path | None, options: RunOptions, err: TextIO) -> int:
             failed.append(nodes[exc.odd[0]])
         if trace is not None:
             for link in links.values():
-                link.call("stream", signals=[], interval_ms=1)
+                link.stream([], interval_ms=1)
                 link.flush_events()
             trace.commit()
             trace = None

@@ -195,10 +195,10 @@ class ControllerClient(ABC):
         self.call("continue")
 
     # --- inputs ---------------------------------------------------------------------------------------------
-    def set_input(self, number: int, value: int) -> None:
+    def set_input(self, number: int | str, value: int) -> None:  # the APC names its inputs
         self.call("set_input", number=number, value=value)
 
-    def schedule_input(self, number: int, value: int, time_ms: int) -> None:
+    def schedule_input(self, number: int | str, value: int, time_ms: int) -> None:
         self.call("schedule_input", number=number, value=value, time_ms=time_ms)
 
     # --- signals and the scope --------------------------------------------------------------------------------

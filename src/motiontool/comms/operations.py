@@ -82,11 +82,11 @@ class ControllerOperations(Protocol):
     def op_continue(self) -> None:
         """Continue after a break"""
 
-    # --- inputs (simulated controllers) -------------------------------------------------------------------------
-    def op_set_input(self, number: int, value: int) -> None:
+    # --- inputs (simulated controllers); the APC's are named: DIGIN0, REF_MARKER, FB_MARKER (apc_service.apc_input) ---
+    def op_set_input(self, number: int | str, value: int) -> None:
         """digital 0/1, analog 53/54 (INAD -1000…1000); simulated controllers only"""
 
-    def op_schedule_input(self, number: int, value: int, time_ms: int) -> None:
+    def op_schedule_input(self, number: int | str, value: int, time_ms: int) -> None:
         """input number to value at controller time time_ms; simulated controllers only"""
 
     # --- signals and the scope ------------------------------------------------------------------------------------
