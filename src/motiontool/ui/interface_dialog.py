@@ -218,7 +218,7 @@ class SelectControllerDialog(QDialog):
         if link is None or not getattr(link, "alive", True):
             return ""
         try:
-            return str(link.call("identify").get("name", ""))
+            return link.identify().name
         except (LinkError, OSError):
             return ""
 
