@@ -8,7 +8,7 @@ import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
-from motiontool.kernel.markers import MarkerSensor
+from motiontool.kernel.markers import Z_WIDTH_QC, MarkerSensor, _index_markers
 from motiontool.kernel.master import MasterConfig
 from motiontool.kernel.plant import PlantConfig
 from tests.kernel.helpers import start
@@ -66,6 +66,20 @@ def test_sensor_edges_are_found_at_their_position_in_either_direction(speed, off
     ends = {round(offset + 1000 * k + width, 6) for k in range(-30, 30)}
     assert all(round(b, 6) in (starts if speed > 0 else ends) for b in rising)
 
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.floats(-3e6, 3e6), st.floats(-6e6, 6e6).filter(lambda v: v != 0), st.sampled_from([1, 2, 4, 1000, 4096]),
+       st.booleans())
+@example(p0=-1.0, step=3.0, period=1, rising=False)  # a pulse as wide as its period: flanks on the same qc
+@example(p0=4095.5, step=-4096.0, period=4096, rising=True)
+def test_index_markers_are_the_index_sensors_flanks(p0, step, period, rising):
+    """The index pulses' shortcut (kernel/markers.py _index_markers, issue 30) gives the same positions, fractions and
+    order as the encoder's index pulse as a MarkerSensor, filtered on the flank (CR 2274: MIPOS ±1 qc)."""
+    p1 = p0 + step
+    sensor = MarkerSensor(period=period, width=Z_WIDTH_QC)
+    want = [(b, (b - p0) / (p1 - p0)) for b, r in sensor.edges(p0, p1) if r == rising]
+    assert _index_markers(p0, p1, period, rising) == want
 
 def test_mipos_latches_the_master_marker_inside_the_tick():
     """CR 2263-2274 / DG 9567-9581: MIPOS is the last master marker (33-19 type 2 = external marker, input 5)

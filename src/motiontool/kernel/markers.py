@@ -20,7 +20,6 @@ SYNCMMAXCORR and realised through SyncMotion.correct (SYNCOFFTIME trapezoid or a
 
 from __future__ import annotations
 
-import functools
 import math
 import random
 from dataclasses import dataclass
@@ -129,8 +128,7 @@ class MarkerChannel:
             last, self._cells = self._cells, cells
             if cells == last:
                 return _NONE
-            z = _index_pulses(z_period)
-            found = [(b, _fraction(p0, p1, b)) for b, rising in z.edges(p0, p1) if rising == (marker_type == 0)]
+            found = _index_markers(p0, p1, z_period, marker_type == 0)
         elif marker_type == 2 or marker_type == 3:
             want_rising = marker_type == 2
             level = io.inputs.get(self.input, 0)
@@ -153,10 +151,23 @@ class MarkerChannel:
 _NONE: list = []  # shared empty result, never modified
 
 
-@functools.lru_cache(maxsize=16)
-def _index_pulses(period: int) -> MarkerSensor:
-    """The encoder's index pulses as a (frozen, shareable) MarkerSensor; made once per index period."""
-    return MarkerSensor(period=period, width=Z_WIDTH_QC)
+def _index_markers(p0: float, p1: float, period: int, rising: bool) -> list[tuple[float, float]]:
+    """The index pulses' rising (or falling) flanks passed from p0 to p1 (p0 != p1) as (position, fraction of the
+    tick), in the order they happen: MarkerSensor(period=period, width=Z_WIDTH_QC).edges(p0, p1) of that flank,
+    the same floats, without the sensor's list of both flanks and its sort (issue 30: a CAM axis crosses a pulse
+    edge every ~25 ms). Moving up a pulse rises at k·period, moving down at k·period + Z_WIDTH_QC."""
+    if abs(p1 - p0) > MAX_SEARCH_QC:
+        return _NONE
+    up = p1 > p0
+    lo, hi = (p0, p1) if up else (p1, p0)
+    width = 0 if rising == up else Z_WIDTH_QC
+    ks = range(math.floor((lo - Z_WIDTH_QC) / period) - 1, math.ceil(hi / period) + 2)  # MarkerSensor._starts
+    found = []
+    for k in ks if up else reversed(ks):
+        b = 0.0 + k * period + width
+        if lo < b <= hi:
+            found.append((b, (b - p0) / (p1 - p0)))
+    return found
 
 
 def _between(cells: tuple | None, period: int) -> tuple[float, float]:
