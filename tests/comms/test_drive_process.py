@@ -229,7 +229,7 @@ def test_polling_and_testsetp_scopes_over_the_wire():
         apos = scope.curves[0].buffer
         assert len(apos) == 40 and apos.arrays()[1][-1] > 0
         recordings = list_testsetp(link)
-        assert recordings and recordings[0]["samples"] == 200
+        assert recordings and recordings[0].samples == 200
         curves = load_testsetp(Scope(), link, 0)
         assert [c.name for c in curves][0].startswith("1: ") and len(curves[0].buffer) == 200
         link.close()

@@ -110,9 +110,9 @@ def test_testsetp_finds_a_programs_recording_and_reloads_a_rerun():
     start(link, TESTSETP)
     link.advance(3000)
     found = list_testsetp(link)
-    assert [r["name"] for r in found] == ["test"]
+    assert [r.name for r in found] == ["test"]
     scope = Scope("testsetp")
-    curves = load_testsetp(scope, link, found[0]["index"])
+    curves = load_testsetp(scope, link, found[0].index)
     assert [c.name for c in curves] == ["1: REG_ACTPOS [4097]", "1: REG_COMPOS [4098]",
                                         f"1: SYSVAR 0x1270001 [{0x01270001}]"]
     assert [c.first_of_set for c in curves] == [True, False, False]
@@ -126,7 +126,7 @@ def test_testsetp_finds_a_programs_recording_and_reloads_a_rerun():
     # the rerun's data, in the curve's place (decision S15): the recording's other curves stay beside it
     assert curves[0].source.info["recorded_at_ms"] > recorded_at
     assert np.array_equal(curves[0].raw()[0], first)
-    second = load_testsetp(scope, link, list_testsetp(link)[-1]["index"], label="run 2 ")
+    second = load_testsetp(scope, link, list_testsetp(link)[-1].index, label="run 2 ")
     assert second[1].raw()[0][0] == first[0]   # a second run lies over the first (issue 16, 2l)
     diff = compute(DerivedSpec("difference", curves[1].name, second[1].name), lambda n: scope.curve(n).raw())
     assert diff[1].size == 1000 and np.isfinite(diff[1]).all()

@@ -42,7 +42,7 @@ def test_a_tune_run_lands_on_the_time_base_of_a_testsetp_set_shown_before():
     start(link, TESTSETP)
     link.advance(3000)
     scope = Scope("testsetp")
-    first = load_testsetp(scope, link, list_testsetp(link)[-1]["index"])[0]
+    first = load_testsetp(scope, link, list_testsetp(link)[-1].index)[0]
     result = Tune(scope, link).run_synchronously()
     run = scope.curve(result.curves[0])
     assert run.raw()[0][0] == first.raw()[0][0]

@@ -15,6 +15,7 @@ import time
 
 import numpy as np
 
+from motiontool.comms.client import RecordingInfo, RecordingStatus
 from motiontool.comms.link import Link
 from motiontool.comms.protocol import LinkEvent
 from motiontool.scope.curves import Curve, Group, Scope, Source, signal_label
@@ -99,12 +100,12 @@ class FreeRun:
             self.capture = Capture(trig, len(curves))
         if self._subscribed:
             self.link.subscribe(self._on_event)
-        self.link.call("stream", signals=self._signals, interval_ms=group.interval_ms)
+        self.link.stream(self._signals, interval_ms=group.interval_ms)
         self.running = True
 
     def stop(self) -> None:
         if self.running:
-            self.link.call("stream", signals=[], interval_ms=1)
+            self.link.stream([], interval_ms=1)
             if self._subscribed:
                 self.link.unsubscribe(self._on_event)
         self.running = False
@@ -193,9 +194,9 @@ class Polling:
         signals = [c for c in curves if c.source.method != "variable"]
         variables = [c for c in curves if c.source.method == "variable"]
         began = time.perf_counter()
-        values = self.link.call("read_signals", signals=[c.source.signal for c in signals] + [SYS_CLOCK])
+        values = self.link.read_signals([c.source.signal for c in signals] + [SYS_CLOCK])
         if variables:  # program variables (DG 5552-5622) come from the debug read of the running program
-            values[-1:-1] = self.link.call("read_variables", names=[c.source.signal for c in variables])
+            values[-1:-1] = self.link.read_variables([c.source.signal for c in variables])
         self.request_seconds += time.perf_counter() - began
         now = float(values[-1])
         if now == self._last_time:   # the controller's clock stood since the last poll (a busy simulator host):
@@ -222,37 +223,35 @@ class SingleShot:
         curves = self.curves()
         if not curves:
             raise ValueError(f"group '{self.group}' has no active curve")
-        status = self.link.call("start_recording", signals=[c.source.signal for c in curves],
-                                interval_ms=g.interval_ms, destination=g.destination, cyclic=g.cyclic,
-                                count=g.count)
-        self.limit = status["limit"]
+        status = self.link.start_recording([c.source.signal for c in curves], interval_ms=g.interval_ms,
+                                           destination=g.destination, cyclic=g.cyclic, count=g.count)
+        self.limit = status.limit
         for c in curves:
             c.buffer.clear()
             if c.buffer.capacity < self.limit:
                 c.buffer.set_capacity(self.limit)
         self.running = True
 
-    def status(self) -> dict | None:
-        return self.link.call("recording_status")
+    def status(self) -> RecordingStatus | None:
+        return self.link.recording_status()
 
     def stop(self) -> int:
         """Upload the recording into the curves; returns the number of sets."""
         if not self.running:
             return 0
         self.running = False
-        data = self.link.call("stop_recording")
-        t = np.asarray(data["time_ms"], dtype=float)
-        v = np.asarray(data["samples"], dtype=float).reshape(t.size, len(data["signals"]))
+        data = self.link.stop_recording()
+        t = np.asarray(data.time_ms, dtype=float)
+        v = np.asarray(data.samples, dtype=float).reshape(t.size, len(data.signals))
         for c, j in zip(self.curves(), range(v.shape[1]), strict=False):
             c.buffer.extend(t, apply(c.source.select, v[:, j]))
-            c.source.info = {"recording": data["name"], "interval_ms": data["interval_ms"],
-                             "start_ms": data["start_ms"]}
+            c.source.info = {"recording": data.name, "interval_ms": data.interval_ms, "start_ms": data.start_ms}
         return int(t.size)
 
 
-def list_testsetp(link: Link) -> list[dict]:
+def list_testsetp(link: Link) -> list[RecordingInfo]:
     """The TESTSETP recordings on the controller (DG 5326-5347)."""
-    return link.call("list_recordings")
+    return link.list_recordings()
 
 
 def recorded_start(scope: Scope, exclude: Curve | None = None) -> float | None:
@@ -267,18 +266,18 @@ def load_testsetp(scope: Scope, link: Link, index: int, axis: int = 1, label: st
     of the set gets the grey background (DG 5339-5345). A recording added to a scope that holds curves starts
     where they start, so runs lie over each other as in S23's difference of two runs (decision S15); the
     controller time of its first sample stays in the curve's Source info."""
-    data = link.call("upload_recording", index=index)
+    data = link.upload_recording(index)
     curves = []
-    n = len(data["samples"])
-    first = data.get("first_ms", data["start_ms"])
+    n = len(data.samples)
+    first = data.first_ms
     start = recorded_start(scope)
-    t = (first if start is None else start) + np.arange(n, dtype=float) * data["interval_ms"]
-    values = np.asarray(data["samples"], dtype=float).reshape(n, len(data["indices"]))
-    for j, (idx, name) in enumerate(zip(data["indices"], data["names"], strict=True)):
+    t = (first if start is None else start) + np.arange(n, dtype=float) * data.interval_ms
+    values = np.asarray(data.samples, dtype=float).reshape(n, len(data.indices))
+    for j, (idx, name) in enumerate(zip(data.indices, data.names, strict=True)):
         curve_name = f"{label}{axis}: {name} [{idx}]"
         curve = Curve(curve_name, Source(method="testsetp", signal=str(idx), group="", controller=1,
-                                         info={"recording": data["name"], "index": index,
-                                               "interval_ms": data["interval_ms"], "recorded_at_ms": first}),
+                                         info={"recording": data.name, "index": index,
+                                               "interval_ms": data.interval_ms, "recorded_at_ms": first}),
                       unit=default_unit(str(idx)), first_of_set=j == 0)
         curve.buffer.set_capacity(max(n, 1))
         curve.buffer.extend(t, values[:, j])
@@ -291,20 +290,20 @@ def reload_testsetp(scope: Scope, link: Link, curve: Curve) -> None:
     name = curve.source.info.get("recording")
     if curve.source.method != "testsetp" or name is None:
         raise ValueError(f"curve '{curve.name}' has no recording to reload")
-    same = [r["index"] for r in link.call("list_recordings") if r["name"] == name]  # the newest run of it
+    same = [r.index for r in link.list_recordings() if r.name == name]  # the newest run of it
     if not same:
         raise ValueError(f"the controller has no recording '{name}' any more")
     curve.source.info["index"] = same[-1]
-    data = link.call("upload_recording", index=same[-1])
-    n = len(data["samples"])
-    j = [str(i) for i in data["indices"]].index(curve.source.signal)
-    first = data.get("first_ms", data["start_ms"])
+    data = link.upload_recording(same[-1])
+    n = len(data.samples)
+    j = [str(i) for i in data.indices].index(curve.source.signal)
+    first = data.first_ms
     start = curve.raw()[0][0] if len(curve.buffer) else recorded_start(scope, exclude=curve)
-    t = (first if start is None else start) + np.arange(n, dtype=float) * data["interval_ms"]
+    t = (first if start is None else start) + np.arange(n, dtype=float) * data.interval_ms
     curve.source.info["recorded_at_ms"] = first
     curve.buffer.set_capacity(max(n, 1))
     curve.buffer.clear()
-    curve.buffer.extend(t, np.asarray(data["samples"], dtype=float).reshape(n, -1)[:, j])
+    curve.buffer.extend(t, np.asarray(data.samples, dtype=float).reshape(n, -1)[:, j])
 
 
 def default_group(scope: Scope, method: str) -> Group:

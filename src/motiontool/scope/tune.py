@@ -115,26 +115,26 @@ class Tune:
             raise RuntimeError("tune program: " + "; ".join(d.format() for d in result.diagnostics))
         if self.link.status().program_state == "running":
             raise ValueError("the controller is executing a program: stop it before a test move")
-        self._start_cpos = float(self.link.call("read_signals", signals=["CPOS"])[0])
+        self._start_cpos = float(self.link.read_signals(["CPOS"])[0])
         self._parameters = self.read_parameters()
         self.link.download(result.image.to_bytes())
         self.link.start()
-        self.link.call("start_recording", signals=list(SIGNALS), interval_ms=1, destination="DYNMEM",
-                       cyclic=False, count=cfg.max_ms)
+        self.link.start_recording(list(SIGNALS), interval_ms=1, destination="DYNMEM", cyclic=False,
+                                  count=cfg.max_ms)
         self.running = True
 
     def finished(self) -> bool:
         status = self.link.status()
         if status.program_state in ("ended", "error", "idle"):
             return True
-        rec = self.link.call("recording_status")
-        return rec is None or not rec["running"]
+        rec = self.link.recording_status()
+        return rec is None or not rec.running
 
     def finish(self) -> TuneResult:
         self.running = False
-        data = self.link.call("stop_recording")
-        t = np.asarray(data["time_ms"], dtype=float)
-        v = np.asarray(data["samples"], dtype=float).reshape(t.size, len(SIGNALS))
+        data = self.link.stop_recording()
+        t = np.asarray(data.time_ms, dtype=float)
+        v = np.asarray(data.samples, dtype=float).reshape(t.size, len(SIGNALS))
         recorded_at = float(t[0]) if t.size else None
         if t.size:
             t = t - t[0]

@@ -155,7 +155,7 @@ class RunControl:
                 except LinkError:
                     self._recording_status = None
                 self._update_title()
-                if self._recording_status is not None and not self._recording_status.get("running", True):
+                if self._recording_status is not None and not self._recording_status.running:
                     # full ('stop when full'): the run has ended, and "when the run ends, the Oscilloscope will
                     # upload" (DG 5434) - it waited for Stop (issue 23 item 11)
                     self.stop()

@@ -335,19 +335,19 @@ class ScopeWindow(RunControl, QMainWindow):
             return
         chosen = found[-1]
         if len(found) > 1 and self.ask:
-            labels = [f"{r['index']}: {r['name']} ({r['samples']} sets)" for r in found]
+            labels = [f"{r.index}: {r.name} ({r.samples} sets)" for r in found]
             text, ok = QInputDialog.getItem(self, "TESTSETP", "Recording to upload:", labels, len(labels) - 1,
                                             False)
             if not ok:
                 return
             chosen = found[labels.index(text)]
-        if any(c.source.method == "testsetp" and c.source.info.get("index") == chosen["index"]
+        if any(c.source.method == "testsetp" and c.source.info.get("index") == chosen.index
                for c in self.scope.curves):   # a second Load added the same set again (issue 23 item 8)
-            self.statusBar().showMessage(f"Recording {chosen['index']} ({chosen['name']}) is shown already; "
+            self.statusBar().showMessage(f"Recording {chosen.index} ({chosen.name}) is shown already; "
                                          "Reload in the curve list reads it again", 10000)
             return
-        label = "" if not self.scope.curves else f"#{chosen['index']} "
-        load_testsetp(self.scope, self.link, chosen["index"], label=label)
+        label = "" if not self.scope.curves else f"#{chosen.index} "
+        load_testsetp(self.scope, self.link, chosen.index, label=label)
         self.list.rebuild()
         self.zoom_reset()
 
@@ -420,7 +420,7 @@ class ScopeWindow(RunControl, QMainWindow):
             title += f" [PDO: {self.free_run.link_dropped} lost]"   # a link that counts lost values (S31)
         elif self.single_shot is not None and self.single_shot.running:
             rec = self._recording_status
-            title += " [recording]" if not rec else f" [recording {rec['samples']}/{rec['limit']}]"
+            title += " [recording]" if rec is None else f" [recording {rec.samples}/{rec.limit}]"
         self.setWindowTitle(title)
 
     def edit_properties(self, name: str, *, dialog: PropertiesDialog | None = None) -> bool:
