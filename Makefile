@@ -55,6 +55,7 @@ run: guideps $(STAMP)
 lint: $(STAMP)
 	$(BIN)/ruff check src tests benchmarks
 	$(BIN)/lint-imports
+	$(BIN)/python -m mypy
 
 # The Qt-free packages' tests run in an environment without Qt (PySide6, pyqtgraph, pytest-qt left out): the
 # rule "models never import Qt" is proven by running, not only by the import contracts.

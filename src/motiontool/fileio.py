@@ -216,7 +216,7 @@ def remove_stale_temps(target: Path | str) -> list[Path]:
     """Delete temporary files a killed save of ``target`` left beside it (our own name pattern only): those whose
     writer on this machine no longer runs and that were not touched for a minute, and any older than a day."""
     target = Path(target)
-    removed = []
+    removed: list[Path] = []
     now = time.time()
     try:
         candidates = list(target.parent.glob(f".{glob_escape(target.name)}.*.tmp"))

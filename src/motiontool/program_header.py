@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field
+from typing import TypeVar
 
 from motiontool.cliargs import BadNumber, parse_input, parse_setting, shown
 
@@ -55,11 +56,19 @@ def read_test_settings(text: str, name: str = "program") -> TestSettings:
         for spec in value.split():
             place = f"{name} line {number}: {m.group(1)} entry {shown(spec)}"
             try:
-                parsed = parse_input(spec) if key == "test-inputs" else parse_setting(spec)
+                if key == "test-inputs":
+                    found.inputs.append(_given(parse_input(spec), place, "N=V@T (input, value, ms)"))
+                else:
+                    found.settings.append(_given(parse_setting(spec), place, "NAME=V (parameter, value)"))
             except BadNumber as exc:
                 raise HeaderError(f"{place}: {str(exc).split(': ', 1)[-1]}") from None  # not the CLI's option name
-            if parsed is None:
-                raise HeaderError(f"{place}: give " + ("N=V@T (input, value, ms)" if key == "test-inputs"
-                                                       else "NAME=V (parameter, value)"))
-            (found.inputs if key == "test-inputs" else found.settings).append(parsed)
     return found
+
+
+T = TypeVar("T")
+
+
+def _given(parsed: T | None, place: str, form: str) -> T:
+    if parsed is None:
+        raise HeaderError(f"{place}: give {form}")
+    return parsed

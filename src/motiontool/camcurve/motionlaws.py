@@ -115,7 +115,8 @@ def _piece_value(p: _SinePiece, t, v_a: float, s_a: float, nu: int):
 @functools.cache
 def _integrated(pieces: tuple[_SinePiece, ...]) -> list:
     """[(piece, v at ua, s at ua), …, (None, v(1), s(1))], integrating piece by piece from rest at u = 0."""
-    table, v, s = [], 0.0, 0.0
+    table: list[tuple[_SinePiece | None, float, float]] = []
+    v, s = 0.0, 0.0
     for p in pieces:
         table.append((p, v, s))
         t = p.ub - p.ua

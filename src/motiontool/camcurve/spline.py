@@ -81,6 +81,8 @@ def _start_slope(xs: np.ndarray, c: np.ndarray) -> float:
 class CurveProfile:
     """The evaluated profile of one Curve.  Build once (``profile(curve)`` caches), evaluate many times."""
 
+    kind_codes: np.ndarray   # each segment's kind (_KIND_CODES), taken over by a dragged copy
+
     def __init__(self, curve: Curve, moved_from: tuple[CurveProfile, int] | None = None) -> None:
         """``moved_from`` = (profile, index): the profile of a curve that differs from ``curve`` only in the
         position of fix point ``index`` (a drag); its point types, and so the segment kinds, are taken over."""
@@ -121,7 +123,7 @@ class CurveProfile:
                 coeffs[_DEGREE - 3:, cols] = cs
         quintic = np.zeros(n - 1, dtype=bool)
         quintic[list(quintic_runs)] = True
-        for k in np.nonzero((kind_codes != _KIND_CODES[SPLINE]) | quintic)[0]:
+        for k in map(int, np.nonzero((kind_codes != _KIND_CODES[SPLINE]) | quintic)[0]):
             kind, p = self.kinds[k], piece[k]
             y0, y1, hk = self.y[k], self.y[k + 1], h[k]
             if kind == LINE:
@@ -134,8 +136,8 @@ class CurveProfile:
                 continue
             else:
                 assert kind == TRAPEZOID, kind
-                first, second = _trapezoid(hk, y0, self.line_slopes[k - 1], y1, self.line_slopes[k + 1])
-                coeffs[:, p], coeffs[:, p + 1] = _column(first), _column(second)
+                rise, fall = _trapezoid(hk, y0, self.line_slopes[k - 1], y1, self.line_slopes[k + 1])
+                coeffs[:, p], coeffs[:, p + 1] = _column(rise), _column(fall)
                 breaks[p + 1] = self.x[k] + hk / 2
         if len(laws):  # motion-law segments (camcurve.motionlaws): quintic pieces of the law
             coeffs, breaks = motionlaws.splice(coeffs, breaks, [(int(piece[k]), curve.fix_points[k + 1].type,
@@ -326,11 +328,11 @@ def _roots_in(asc: np.ndarray, h: np.ndarray) -> np.ndarray:
     nonzero = asc != 0
     degree = np.where(nonzero.any(axis=0), len(asc) - 1 - np.argmax(nonzero[::-1], axis=0), 0)
     for g in range(1, len(asc)):
-        idx = np.nonzero(degree == g)[0]
-        if not len(idx):
+        found = np.nonzero(degree == g)[0]
+        if not len(found):
             continue
-        if len(idx) == pieces:  # every piece of this degree (a long spline): slices instead of gathers
-            idx = slice(None)
+        # every piece of this degree (a long spline): slices instead of gathers
+        idx: slice | np.ndarray = slice(None) if len(found) == pieces else found
         coeffs = asc[:g + 1, idx]
         monic = coeffs[:g] / coeffs[g]
         if g == 1:  # the 1×1 companion matrix [-monic] is its own eigenvalue (LAPACK returns it exactly)
@@ -364,7 +366,7 @@ def profile(curve: Curve, cache: bool = True, moved_from: tuple[CurveProfile, in
     points), and remembered only as the last curve asked; ``moved_from`` as for CurveProfile."""
     global _last
     last = _last
-    if last[0] is curve:
+    if last[0] is curve and last[1] is not None:   # set together: a curve is never without its profile
         return last[1]
     prof = _cached_profile(curve) if cache else CurveProfile(curve, moved_from)
     _last = (curve, prof)

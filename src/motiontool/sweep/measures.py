@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -24,8 +25,9 @@ MAX_DEPTH = 50      # nested parentheses and operators; the parser recurses
 _TOKEN = re.compile(r"\s*(?:(?P<number>(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?)"
                     r"|(?P<name>[A-Za-z_][A-Za-z0-9_]*)|(?P<bracket>\[[A-Za-z0-9_.#\-]{1,40}\])"
                     r"|(?P<op>[-+*/(),]))", re.ASCII)
-REDUCERS = {"max": np.max, "min": np.min, "mean": np.mean, "first": lambda s: s[0], "last": lambda s: s[-1],
-            "final": lambda s: s[-1], "rms": lambda s: np.sqrt(np.mean(np.square(s)))}
+REDUCERS: dict[str, Callable[[np.ndarray], float]] = {
+    "max": np.max, "min": np.min, "mean": np.mean, "first": lambda s: s[0], "last": lambda s: s[-1],
+    "final": lambda s: s[-1], "rms": lambda s: np.sqrt(np.mean(np.square(s)))}
 FUNCTIONS = sorted([*REDUCERS, "abs", "settle_time"])
 
 

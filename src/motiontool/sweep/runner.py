@@ -62,7 +62,7 @@ def run_point(job: SweepJob, values: Sequence[int]) -> Row:
         return (), one_line(f"{type(exc).__name__}: {exc}")
 
 
-def one_line(text: str) -> str:
+def one_line(text: object) -> str:
     return " ".join(str(text).split())
 
 

@@ -64,7 +64,7 @@ def _compile(path: Path, kind: str, include_dirs: list[Path], err: TextIO) -> by
     result = compile_source(path=path, include_dirs=include_dirs)
     for d in result.diagnostics:
         print(d.format(), file=err)
-    return result.image.to_bytes() if result.ok else None
+    return result.image.to_bytes() if result.ok and result.image is not None else None
 
 
 def _try_on_controller(job: SweepJob) -> None:
