@@ -73,7 +73,7 @@ def test_programs_save_start_delete(window, qtbot):
     qtbot.addWidget(dialog)
     assert dialog.store(name="FIRSTPROGRAM")
     assert dialog.store(number=7, name="SEVEN")
-    assert [(p["number"], p["name"]) for p in dialog.programs()] == [(0, "FIRSTPRO"), (7, "SEVEN")]
+    assert [(p.number, p.name) for p in dialog.programs()] == [(0, "FIRSTPRO"), (7, "SEVEN")]
     assert dialog.table.rowCount() == 2
     dialog.table.selectRow(1)
     assert dialog.start()
@@ -86,7 +86,7 @@ def test_programs_save_start_delete(window, qtbot):
     dialog.autostart(False)
     assert dialog.table.item(0, 2).text() == ""
     dialog.delete()
-    assert [p["number"] for p in dialog.programs()] == [7]
+    assert [p.number for p in dialog.programs()] == [7]
     dialog.delete_all()
     assert dialog.table.rowCount() == 0
 

@@ -22,6 +22,7 @@ from PySide6.QtWidgets import (
     QVBoxLayout,
 )
 
+from motiontool.comms.client import ProgramInfo
 from motiontool.comms.protocol import LinkError
 from motiontool.ui.controllers import SIMULATED_IDS
 
@@ -164,7 +165,7 @@ def reset(w, what: str, ask: bool = True) -> bool:
             != QMessageBox.StandardButton.Yes:
         return False
     try:
-        link.call("reset", what=what)
+        link.reset(what)
     except LinkError as exc:
         w.messages.ide(f"Reset {title}: {exc}")
         return False
@@ -181,7 +182,7 @@ def memory(w, what: str, *, ask: bool = True) -> bool:
     if ask and QMessageBox.question(w, title, f"{title}: {effect}. Continue?") != QMessageBox.StandardButton.Yes:
         return False
     try:
-        link.call("delete_eprom") if what == "delete" else link.call("save_memory", what=what)
+        link.delete_eprom() if what == "delete" else link.save_memory(what)
     except LinkError as exc:
         w.messages.ide(f"{title}: {exc}")
         return False
@@ -230,21 +231,21 @@ class ProgramsDialog(QDialog):
     def link(self):
         return self.w.bridge.link
 
-    def programs(self) -> list[dict]:
-        return self.link.call("list_programs") if self.link is not None else []
+    def programs(self) -> list[ProgramInfo]:
+        return self.link.list_programs() if self.link is not None else []
 
     def refresh(self) -> None:
         rows = self.programs()
         self.table.setRowCount(len(rows))
         for r, p in enumerate(rows):
-            self.table.setItem(r, 0, QTableWidgetItem(str(p["number"])))
-            self.table.setItem(r, 1, QTableWidgetItem(p["name"]))
+            self.table.setItem(r, 0, QTableWidgetItem(str(p.number)))
+            self.table.setItem(r, 1, QTableWidgetItem(p.name))
             # the manual's mark (DG 2727) is in the common fonts; "⦿" was not and showed as a missing glyph
-            mark = QTableWidgetItem(AUTOSTART_MARK if p.get("autostart") else "")
-            mark.setToolTip("started when the controller is powered on" if p.get("autostart") else "")
+            mark = QTableWidgetItem(AUTOSTART_MARK if p.autostart else "")
+            mark.setToolTip("started when the controller is powered on" if p.autostart else "")
             self.table.setItem(r, 2, mark)
-            source = QTableWidgetItem("✓" if p.get("source") else "")
-            source.setToolTip(f"stored {p['stored_at']}" if p.get("stored_at") else "stored without its source")
+            source = QTableWidgetItem("✓" if p.source else "")
+            source.setToolTip(f"stored {p.stored_at}" if p.stored_at else "stored without its source")
             self.table.setItem(r, 3, source)
 
     def selected_number(self) -> int | None:
@@ -257,7 +258,7 @@ class ProgramsDialog(QDialog):
         if outcome is None or not outcome.result.ok:
             self.w.messages.ide("Programs: the program has errors and was not saved")
             return False
-        used = {p["number"] for p in self.programs()}
+        used = {p.number for p in self.programs()}
         if number is None:
             number = next((n for n in PROGRAM_NUMBERS if n not in used), None)
             if number is None:
@@ -311,12 +312,12 @@ class ProgramsDialog(QDialog):
         if number is None:
             return None
         try:
-            stored = self.link.call("upload_source", number=number)
+            stored = self.link.upload_source(number)
         except LinkError as exc:
             self.w.messages.ide(f"Upload: {exc}")
             return None
-        main = Path(stored["main"])
-        stamp = stored["stored_at"].replace(":", "").replace("-", "").replace(" ", "_")
+        main = Path(stored.main)
+        stamp = stored.stored_at.replace(":", "").replace("-", "").replace(" ", "_")
         suggested = f"{main.stem}_{stamp}{main.suffix or '.m'}"
         if folder is None:
             chosen, _ = QFileDialog.getSaveFileName(self, "Upload program", suggested, "APOSS programs (*.m)")
@@ -328,8 +329,8 @@ class ProgramsDialog(QDialog):
         from motiontool.fileio import atomic_write_text
 
         try:
-            for name, text in stored["files"].items():
-                path = target if name == stored["main"] else target.parent / Path(name).name
+            for name, text in stored.files.items():
+                path = target if name == stored.main else target.parent / Path(name).name
                 if path != target and path.exists() and path.read_text(encoding="utf-8") != text:
                     path = path.with_name(f"{path.stem}_{stamp}{path.suffix}")  # the user's own file stays
                     self.w.messages.ide(f"Upload: {name} differs from the file beside it: written as {path.name}")
@@ -357,20 +358,20 @@ class ProgramsDialog(QDialog):
         number = self.selected_number()
         if number is None:
             return
-        current = next((p["number"] for p in self.programs() if p.get("autostart")), None)
+        current = next((p.number for p in self.programs() if p.autostart), None)
         if on or current == number:
-            self.link.call("set_autostart", number=number if on else None)
+            self.link.set_autostart(number if on else None)
         self.refresh()
 
     def delete(self) -> None:
         number = self.selected_number()
         if number is not None:
-            self.link.call("delete_program", number=number)
+            self.link.delete_program(number)
             self.refresh()
 
     def delete_all(self) -> None:
         for p in self.programs():
-            self.link.call("delete_program", number=p["number"])
+            self.link.delete_program(p.number)
         self.refresh()
 
 
@@ -385,18 +386,18 @@ def diagnostic_report_text(link, controller_id: int) -> str:
     from motiontool.cameditor.zbc import config_text
     from motiontool.paramdb import database
 
-    ident = link.call("identify")
+    ident = link.identify()
     status = link.status()
     lines = [f"# motiontool diagnostic report, controller {controller_id}",
-             f"product: {ident['product']}", f"firmware: {ident['firmware']}", f"protocol: {ident['protocol']}",
+             f"product: {ident.product}", f"firmware: {ident.firmware}", f"protocol: {ident.protocol}",
              "", "[status]"]
     lines += [f"{key} = {value}" for key, value in status.to_dict().items()]
     lines += ["", "[error history]"]
-    history = link.call("error_history")
-    lines += [f"{e['time_ms']} ms  error {e['number']}: {e['text']}" + (f" (line {e['line']})" if e["line"] else "")
+    history = link.error_history()
+    lines += [f"{e.time_ms} ms  error {e.number}: {e.text}" + (f" (line {e.line})" if e.line else "")
               for e in history] or ["none"]
     lines += ["", "[programs]"]
-    lines += [f"{p['number']}: {p['name']}" for p in link.call("list_programs")] or ["none"]
+    lines += [f"{p.number}: {p.name}" for p in link.list_programs()] or ["none"]
     lines += ["", "[readouts]"]
     for p in database():
         if p.read_only:
