@@ -9,6 +9,7 @@ that the source matches")."""
 from __future__ import annotations
 
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
 from PySide6.QtWidgets import (
@@ -23,9 +24,19 @@ from PySide6.QtWidgets import (
     QVBoxLayout,
 )
 
+from motiontool.comms.client import ErrorRecord
 from motiontool.comms.protocol import LinkError
 
 COLUMNS = ("#", "Time", "Age", "Error", "Message", "Data", "Offset", "Line", "Program")
+
+
+@dataclass(frozen=True)
+class Entry:
+    """One row: the controller's record and what the IDE adds to it."""
+    error: ErrorRecord
+    age_s: float
+    offset: int | None
+    program: tuple[object, str] | None        # (editor or None, label) of the program that raised it
 
 
 def statement_offset(image, line: int | None) -> int | None:
@@ -40,7 +51,7 @@ class ErrorHistoryDialog(QDialog):
         super().__init__(w)
         self.w = w
         self.controller_id = controller_id
-        self.entries: list[dict] = []
+        self.entries: list[Entry] = []
         self.read_at = ""
         self.setWindowTitle(f"Error History — controller {controller_id}")
         self.header = QLabel()
@@ -75,7 +86,7 @@ class ErrorHistoryDialog(QDialog):
         """Read the list; Age counts from the controller's clock now."""
         try:
             link = self.link()
-            history = link.call("error_history")
+            history = link.error_history()
             now = link.status().time_ms
         except (LinkError, ValueError) as exc:
             self.header.setText(f"Controller {self.controller_id}: {exc}")
@@ -83,9 +94,8 @@ class ErrorHistoryDialog(QDialog):
         image = self.w.development.images.get(self.controller_id)
         self.entries = []
         for e in reversed(history):  # newest first (DG 2996)
-            offset = e.get("offset", statement_offset(image, e.get("line")))
-            self.entries.append({**e, "age_s": max(0, now - e["time_ms"]) / 1000, "offset": offset,
-                                 "program": self.program_of(e)})
+            self.entries.append(Entry(e, max(0, now - e.time_ms) / 1000, statement_offset(image, e.line),
+                                      self.program_of(e)))
         self.read_at = time.strftime("%Y-%m-%d %H:%M:%S")
         self.header.setText(f"Controller {self.controller_id}, read {self.read_at}: {len(self.entries)} error(s)")
         self.table.setRowCount(len(self.entries))
@@ -93,24 +103,25 @@ class ErrorHistoryDialog(QDialog):
             for column, value in enumerate(self.row_values(row, e)):
                 self.table.setItem(row, column, QTableWidgetItem(value))
             program = self.table.item(row, COLUMNS.index("Program"))
-            program.setToolTip(e["program"][1] if e["program"] else "Not started from this window: the program "
+            program.setToolTip(e.program[1] if e.program else "Not started from this window: the program "
                                "is not known")
         return True
 
-    def program_of(self, e: dict) -> tuple[object, str] | None:
+    def program_of(self, e: ErrorRecord) -> tuple[object, str] | None:
         """(editor, label) of the program that raised the error; the label follows a tab saved since."""
-        noted = self.w.development.error_program(self.controller_id, e["time_ms"], e["number"])
+        noted = self.w.development.error_program(self.controller_id, e.time_ms, e.number)
         if noted is None:
             return None
         editor, label = noted
         return (editor, self.w.program_label(editor)) if editor in self.w.editors() else (None, label)
 
     @staticmethod
-    def row_values(row: int, e: dict) -> list[str]:
-        return [str(row + 1), str(e["time_ms"]), f"{e['age_s']:.1f}", str(e["number"]), e["text"],
-                e.get("detail", "") or "", "" if e["offset"] is None else str(e["offset"]),
-                "" if not e.get("line") else str(e["line"]),
-                Path(e["program"][1]).name if e.get("program") else ""]
+    def row_values(row: int, e: Entry) -> list[str]:
+        error = e.error
+        return [str(row + 1), str(error.time_ms), f"{e.age_s:.1f}", str(error.number), error.text,
+                error.detail or "", "" if e.offset is None else str(e.offset),
+                "" if not error.line else str(error.line),
+                Path(e.program[1]).name if e.program else ""]
 
     def write(self, path: Path) -> None:
         """Write (DG 3025): an ASCII text file, tab-separated, that a spreadsheet can import."""
@@ -134,7 +145,7 @@ class ErrorHistoryDialog(QDialog):
 
     def clear(self) -> None:
         try:
-            self.link().call("clear_error_history")
+            self.link().clear_error_history()
         except (LinkError, ValueError) as exc:
             self.header.setText(f"Controller {self.controller_id}: {exc}")
             return
@@ -143,8 +154,8 @@ class ErrorHistoryDialog(QDialog):
     def jump(self, row: int) -> bool:
         """Double-click (DG 3021-3023): close the dialog and show the line in the program that raised the error:
         its tab, else its file opened; never a line of whichever program happens to be in front."""
-        entry = self.entries[row] if 0 <= row < len(self.entries) else {}
-        line, program = entry.get("line"), entry.get("program")
+        entry = self.entries[row] if 0 <= row < len(self.entries) else None
+        line, program = (entry.error.line, entry.program) if entry is not None else (None, None)
         if not line:
             self.header.setText("This error has no program line")
             return False
