@@ -83,3 +83,22 @@ def test_typed_answers_on_the_simulated_controller():
     link.advance(30)
     shot = link.stop_recording()
     assert shot.signals == ["APOS"] and len(shot.samples) == 10 and shot.interval_ms == 2
+
+
+@pytest.mark.parametrize("kind", ["MCO", "APC"])
+def test_every_signal_the_controller_lists_can_be_read_and_streamed(kind):
+    """The scope's signal browser offers what list_signals answers: each name must be one the controller reads."""
+    if kind == "MCO":
+        link = EmbeddedLink()
+    else:
+        from motiontool.comms.apc_service import embedded_apc_link
+
+        link = embedded_apc_link()
+    signals = link.list_signals()
+    groups = {s.group for s in signals}
+    assert len(signals) > 100 and all(s.name and s.text for s in signals)
+    assert ({"Axis", "Process data (SYSVAR)", "Parameters"} if kind == "MCO" else {"APC read parameters"}) <= groups
+    names = [s.name for s in signals]
+    assert len(link.read_signals(names)) == len(names)
+    link.stream(names[:20], interval_ms=1)
+    link.stream([], interval_ms=1)

@@ -29,6 +29,7 @@ from motiontool.apc.readpars import parameter_number
 from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.operations import OPERATIONS
 from motiontool.comms.protocol import PROTOCOL_VERSION, LinkEvent, Request, Response, Status
+from motiontool.comms.signal_catalogue import apc_signals
 
 PROGRAM_OPS = ("download", "start", "break", "continue", "list_programs", "delete_program", "set_autostart",
                "power_on", "set_breakpoints", "step", "read_variables", "write_variable", "restore_arrays",
@@ -211,6 +212,9 @@ class ApcService:
         if str(name).strip() == SYS_CLOCK:
             return lambda: self.time_ms
         return apc_reader(self.drive, name)
+
+    def op_list_signals(self) -> list[dict]:
+        return apc_signals()
 
     def op_read_signals(self, signals) -> list:
         return [self.signal(name)() for name in signals]

@@ -65,6 +65,13 @@ class StoredSource:
 
 
 @dataclass(frozen=True)
+class SignalInfo:
+    name: str                           # what stream, read_signals and the recordings take
+    group: str                          # "Axis", "Parameters", "Process data (SYSVAR)", "APC read parameters" …
+    text: str = ""
+
+
+@dataclass(frozen=True)
 class RecordingInfo:
     index: int
     name: str
@@ -207,6 +214,9 @@ class ControllerClient(ABC):
 
     def read_signals(self, signals: Sequence[str]) -> list[float]:
         return self.call("read_signals", signals=list(signals))
+
+    def list_signals(self) -> list[SignalInfo]:
+        return [_make(SignalInfo, s) for s in self.call("list_signals")]
 
     def list_recordings(self) -> list[RecordingInfo]:
         return [_make(RecordingInfo, r) for r in self.call("list_recordings")]

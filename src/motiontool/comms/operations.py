@@ -96,6 +96,9 @@ class ControllerOperations(Protocol):
     def op_read_signals(self, signals: list) -> list:
         """one poll: the signals' present values"""
 
+    def op_list_signals(self) -> list:
+        """[{name, group, text}]: the signals stream, read_signals and the recordings take (the scope's browser)"""
+
     def op_list_recordings(self) -> list:
         """TESTSETP recordings: [{index, name, samples, indices, running}]"""
 

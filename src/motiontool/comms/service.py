@@ -12,6 +12,7 @@ from motiontool.aposs.image import ImageError, ProgramImage
 from motiontool.comms import scope_recording
 from motiontool.comms.operations import OPERATIONS
 from motiontool.comms.protocol import PROTOCOL_VERSION, LinkEvent, Request, Response, Status
+from motiontool.comms.signal_catalogue import mco_signals
 from motiontool.kernel import fc300
 from motiontool.kernel.arrays import MAX_ARRAY_ELEMENTS
 from motiontool.kernel.controller import Controller, Event
@@ -296,6 +297,9 @@ class ControllerService:
     def op_read_signals(self, signals) -> list:
         c = self.controller
         return [signal_reader(name)(c) for name in signals]
+
+    def op_list_signals(self) -> list[dict]:
+        return mco_signals()
 
     def op_list_recordings(self) -> list[dict]:
         return [{"index": i, "name": r.name, "samples": len(r.samples), "indices": r.indices,
