@@ -40,7 +40,7 @@ def download_config(link: Link, config: ConfigFile, sets: tuple[str, ...] = SETS
             raise ConfigError(str(exc)) from None
     if config.arrays and "arrays" in sets:
         try:
-            link.call("restore_arrays", arrays=[{"name": a.name, "values": list(a.values)} for a in config.arrays])
+            link.restore_arrays([(a.name, a.values) for a in config.arrays])
         except LinkError as exc:
             raise ConfigError(f"arrays: the controller refused them: {exc}") from None
 
@@ -53,9 +53,9 @@ def upload_config(link: Link) -> ConfigFile:
             continue
         config.parameters[parameter.number] = parameter.from_raw(link.read_parameter(parameter.number))
     config.drive = _upload_drive(link)
-    for info in link.call("list_arrays"):
-        values = link.read_array(info["index"])
-        entry = ArrayEntry(info["name"], values)
+    for info in link.list_arrays():
+        values = link.read_array(info.index)
+        entry = ArrayEntry(info.name, values)
         try:
             curve = decode(values).to_curve()
         except (CurveArrayError, CurveError):

@@ -379,10 +379,10 @@ class ApcPanel(QWidget):
         try:
             link.download(DplImage("cam_test.dpl", table_program(table, master_rpm=rpm, counts_per_rev=cpr))
                           .to_bytes(), name="cam_test.dpl")
-            link.call("stream", signals=["APC_RF_POS", "APC_PROF_OUT_POS"], interval_ms=1)
+            link.stream(["APC_RF_POS", "APC_PROF_OUT_POS"], interval_ms=1)
             link.start()
             link.advance(duration)
-            link.call("stream", signals=[], interval_ms=1)
+            link.stream([], interval_ms=1)
             link.flush_events()
         finally:
             link.close()
