@@ -122,8 +122,8 @@ class Checker:
                 self.sink.error(f"{c.text} is declared twice (first at {seen[c.name]})", c.loc)
                 continue
             seen[c.name] = c.loc
-            values = [self._constant(v, f"a value of {c.text}") for v in c.values]
-            values = [v if v is not None else 0 for v in values]
+            folded = [self._constant(v, f"a value of {c.text}") for v in c.values]
+            values = [v if v is not None else 0 for v in folded]
             size = self._constant(c.size, f"the size of {c.text}") if c.size is not None else len(values)
             if not values:
                 self.sink.error(f"CONST {c.text} has no values", c.loc)

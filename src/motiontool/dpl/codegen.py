@@ -101,12 +101,11 @@ class CodeGen:
                 self._emit(code, self._tuple(s), s.loc)
             elif isinstance(s, ast.CallStmt):
                 call = self._call(s.call, targets=0)
-                self._emit(code, lambda c=call: (c(), None)[1], s.loc)
+                self._emit(code, _discard(call), s.loc)
             elif isinstance(s, ast.Reinit):
                 self._emit(code, lambda: (self.drive.reinit(), None)[1], s.loc)
             elif isinstance(s, ast.Dim):  # executing a DIM clears the array
-                data = self.memory.arrays[s.name]
-                self._emit(code, lambda d=data: (d.__setitem__(slice(None), [0] * len(d)), None)[1], s.loc)
+                self._emit(code, _clear(self.memory.arrays[s.name]), s.loc)
             # ConstArray: a declaration, nothing to execute
 
     def _if(self, s: ast.If, code: TaskCode, labels, fixups) -> None:
@@ -158,6 +157,7 @@ class CodeGen:
                     raise DplRuntimeError(f"index {i} is outside {target.text}[0 … {len(data) - 1}]", loc)
                 data[i] = wrap32(v)
             return store
+        assert isinstance(target, ast.Param)  # the parser's targets: Bit, Var, Elem, Param
         return self._param_store((target.menu, target.number))
 
     def _param_store(self, key: tuple[int, int]) -> Callable[[int], None]:
@@ -199,6 +199,7 @@ class CodeGen:
             if e.op == "-":
                 return lambda: wrap32(-x())
             return lambda: 0 if x() else 1
+        assert isinstance(e, ast.Binary)  # the last kind of ast.Expr
         return self._binary(e)
 
     def _binary(self, e: ast.Binary) -> Callable[[], int]:
@@ -229,10 +230,11 @@ class CodeGen:
 
     def _call(self, call: ast.Call, targets: int) -> Callable[[], tuple]:
         fn = self.functions[call.name]
-        args = [self._argument(fn, n, a) for n, a in enumerate(call.args)]
         loc = call.loc
-        if fn.key == "IWINDOW":
-            return lambda: (iwindow(*(a() for a in args)),)[:max(targets, 1)]
+        if fn.key == "IWINDOW":  # four integer expressions, no array
+            values = [self._expr(a) for a in call.args]
+            return lambda: (iwindow(*(v() for v in values)),)[:max(targets, 1)]
+        args = [self._argument(fn, n, a) for n, a in enumerate(call.args)]
         if not fn.simulated:
             def refuse():
                 raise DplRuntimeError(f"{fn.name} is not simulated (an SM-Applications call the APC manual does "
@@ -261,6 +263,7 @@ class CodeGen:
 
     def _argument(self, fn, position: int, arg: ast.Expr) -> Callable[[], object]:
         if fn.takes_array(position):  # the array itself: the kernel reads it live (L1528-1531)
+            assert isinstance(arg, ast.Var)  # the checks refused anything but an array's name here
             data = self.memory.arrays[arg.name]
             return lambda: data
         return self._expr(arg)
@@ -268,3 +271,13 @@ class CodeGen:
 
 def _nothing() -> None:
     return None
+
+
+def _discard(call: Callable[[], object]) -> Op:
+    """A call as a statement: its results are dropped, execution goes on with the next operation."""
+    return lambda: (call(), None)[1]
+
+
+def _clear(data: list[int]) -> Op:
+    """Executing a DIM: every element of the array becomes 0."""
+    return lambda: (data.__setitem__(slice(None), [0] * len(data)), None)[1]

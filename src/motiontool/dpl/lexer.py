@@ -36,6 +36,7 @@ _TOKEN = re.compile(r"""
 """, re.VERBOSE | re.ASCII)  # ASCII: \d would take other scripts' digits ("٥٠" as 50; decisions R5)
 _NOTES_OPEN = re.compile(r"[ \t\f\r]*(?:\n[ \t\f\r]*)*\{")
 _BAD_NUMBER_TAIL = re.compile(r"[A-Za-z_%]")
+_WORD_TAIL = re.compile(r"[A-Za-z0-9_%]*")
 _NAMES = {"\u2013": "EN DASH", "\u2014": "EM DASH", "\u201c": "LEFT DOUBLE QUOTATION MARK",
           "\u201d": "RIGHT DOUBLE QUOTATION MARK", "\u2018": "LEFT SINGLE QUOTATION MARK",
           "\u2019": "RIGHT SINGLE QUOTATION MARK", "\u00a0": "NO-BREAK SPACE"}
@@ -57,8 +58,9 @@ def tokenize(text: str, file: str) -> list[Token]:
             while text[pos] in " \t\f\r":
                 pos += 1
             raise CompileError(_bad_character(text[pos]), loc_at(pos))
-        kind = m.lastgroup
-        start, end = m.start(m.lastindex), m.end()
+        kind, group = m.lastgroup, m.lastindex
+        assert kind is not None and group is not None  # every alternative of _TOKEN is a named group
+        start, end = m.start(group), m.end()
         word = text[start:end]
         if kind == "nl":
             append(Token(NEWLINE, "\n", None, loc_at(start)))
@@ -94,8 +96,9 @@ def tokenize(text: str, file: str) -> list[Token]:
             append(Token(OP, word, word, loc_at(start)))
         else:  # numbers
             if end < n and _BAD_NUMBER_TAIL.match(text, end):
-                tail = re.match(r"[A-Za-z0-9_%]*", text[end:]).group()
-                raise CompileError(f"invalid number '{word}{tail}' (names start with a letter or '_')",
+                tail = _WORD_TAIL.match(text[end:])
+                assert tail is not None  # the pattern matches the empty string too
+                raise CompileError(f"invalid number '{word}{tail.group()}' (names start with a letter or '_')",
                                    loc_at(start))
             append(_number(kind, word, loc_at(start), bool(tokens) and tokens[-1].is_op("-")))
         pos = end

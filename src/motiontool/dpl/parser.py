@@ -79,7 +79,7 @@ class Parser:
             if t.kind == NOTES:
                 self.advance()
                 self.expect_op("}", "closing the Notes task")
-                program.notes += t.value
+                program.notes += _name(t)
                 continue
             if t.kind == IDENT and t.value in TASKS and self._task_opens():
                 self._task(program)
@@ -98,7 +98,7 @@ class Parser:
 
     def _task(self, program: ast.Program) -> None:
         name_tok = self.advance()
-        name = TASKS[name_tok.value]
+        name = TASKS[_name(name_tok)]
         if name in program.tasks:
             raise self.error(f"a second {name} task (the first is at {program.tasks[name].loc})", name_tok)
         self.skip_newlines()
@@ -131,10 +131,10 @@ class Parser:
     # --- statements ------------------------------------------------------------------------------------------
     def statement(self) -> ast.Stmt:
         t = self.tok
-        if t.kind == IDENT and self.peek().is_op(":") and not t.value.endswith("%"):
+        if t.kind == IDENT and self.peek().is_op(":") and not _name(t).endswith("%"):
             self.advance()
             self.advance()
-            return ast.Label(t.loc, t.value, t.text)
+            return ast.Label(t.loc, _name(t), t.text)
         stmt = self.simple_statement()
         if not isinstance(stmt, ast.If):
             self.end_of_line(describe_stmt(stmt))
@@ -143,18 +143,18 @@ class Parser:
     def simple_statement(self) -> ast.Stmt:
         t = self.tok
         if t.kind == IDENT:
-            word = t.value
+            word = _name(t)
             if word == "IF":
                 return self._if()
             if word == "GOTO":
                 self.advance()
                 label = self.tok
-                if label.kind != IDENT or label.value.endswith("%"):
+                if label.kind != IDENT or _name(label).endswith("%"):
                     raise self.error(f"GOTO needs a label name, found {describe(label)}")
                 self.advance()
                 if self.tok.is_op(":"):
                     self.advance()
-                return ast.Goto(t.loc, label.value, label.text)
+                return ast.Goto(t.loc, _name(label), label.text)
             if word == "REINIT":
                 self.advance()
                 return ast.Reinit(t.loc)
@@ -183,8 +183,8 @@ class Parser:
         t = self.tok
         if t.kind == PARAM:
             self.advance()
-            return self._bit(ast.Param(t.loc, *t.value))
-        if t.kind == IDENT and t.value.endswith("%"):
+            return self._bit(ast.Param(t.loc, *_param(t)))
+        if t.kind == IDENT and _name(t).endswith("%"):
             return self._bit(self._variable())
         if t.kind == IDENT and t.value not in KEYWORDS:
             raise self.error(f"'{t.text}' cannot be assigned: integer variables end with '%' (floating-point "
@@ -197,18 +197,18 @@ class Parser:
             self.advance()
             index = self.expression()
             self.expect_op("]", f"after the index of {t.text}")
-            return ast.Elem(t.loc, t.value, t.text, index)
-        return ast.Var(t.loc, t.value, t.text)
+            return ast.Elem(t.loc, _name(t), t.text, index)
+        return ast.Var(t.loc, _name(t), t.text)
 
     def _bit(self, base: ast.Expr) -> ast.Expr:
         if not self.tok.is_op("."):
             return base
         self.advance()
         t = self.tok
-        if t.kind != INT or not 0 <= t.value <= 31:
+        if t.kind != INT or not 0 <= _int(t) <= 31:
             raise self.error(f"a bit number 0..31 follows '.', found {describe(t)}")
         self.advance()
-        return ast.Bit(base.loc, base, t.value)
+        return ast.Bit(base.loc, base, _int(t))
 
     def _tuple_assign(self) -> ast.Stmt:
         start = self.advance()
@@ -219,7 +219,7 @@ class Parser:
         self.expect_op(")", "closing the list of results")
         self.expect_op("=", "after the list of results")
         t = self.tok
-        if t.kind != IDENT or t.value.endswith("%") or not self.peek().is_op("("):
+        if t.kind != IDENT or _name(t).endswith("%") or not self.peek().is_op("("):
             raise self.error(f"a list of results takes the results of a function call, found {describe(t)}")
         return ast.TupleAssign(start.loc, targets, self.call())
 
@@ -280,18 +280,18 @@ class Parser:
     def _dim(self) -> ast.Stmt:
         start = self.advance()
         t = self.tok
-        if t.kind != IDENT or not t.value.endswith("%"):
+        if t.kind != IDENT or not _name(t).endswith("%"):
             raise self.error(f"DIM needs an integer array name ending in '%', found {describe(t)}")
         self.advance()
         self.expect_op("[", f"after DIM {t.text}")
         size = self.expression()
         self.expect_op("]", f"after the size of {t.text}")
-        return ast.Dim(start.loc, t.value, t.text, size)
+        return ast.Dim(start.loc, _name(t), t.text, size)
 
     def _const(self) -> ast.ConstArray:
         start = self.advance()
         t = self.tok
-        if t.kind != IDENT or not t.value.endswith("%"):
+        if t.kind != IDENT or not _name(t).endswith("%"):
             raise self.error(f"CONST needs an integer array name ending in '%', found {describe(t)}")
         self.advance()
         self.expect_op("[", f"after CONST {t.text}")
@@ -312,7 +312,7 @@ class Parser:
                 continue
             break
         self.expect_op("}", f"closing the values of {t.text}")
-        return ast.ConstArray(start.loc, t.value, t.text, size, values)
+        return ast.ConstArray(start.loc, _name(t), t.text, size, values)
 
     # --- expressions -----------------------------------------------------------------------------------------
     def expression(self) -> ast.Expr:
@@ -332,7 +332,7 @@ class Parser:
         left = self._binary(level + 1)
         while (self.tok.kind == OP and self.tok.text in ops) or (self.tok.kind == IDENT and self.tok.value in ops):
             t = self.advance()
-            op = t.value if t.kind == IDENT else t.text
+            op = _name(t) if t.kind == IDENT else t.text
             left = ast.Binary(t.loc, op, left, self._binary(level + 1))
         return left
 
@@ -357,19 +357,19 @@ class Parser:
             self.advance()
             if t.value == 1 << 31:
                 raise self.error(f"constant '{t.text}' is outside the integer range", t)
-            return ast.Num(t.loc, t.value)
+            return ast.Num(t.loc, _int(t))
         if t.kind == PARAM:
             self.advance()
-            return ast.Param(t.loc, *t.value)
+            return ast.Param(t.loc, *_param(t))
         if t.kind == IDENT:
-            if t.value.endswith("%"):
+            if _name(t).endswith("%"):
                 return self._variable()
             if self.peek().is_op("("):
                 return self.call()
             if t.value in KEYWORDS or t.value in UNSUPPORTED:
                 raise self.error(f"expected a value, found {describe(t)}")
             self.advance()
-            return ast.Alias(t.loc, t.value, t.text)
+            return ast.Alias(t.loc, _name(t), t.text)
         if t.is_op("("):
             self.advance()
             self._nest(t)
@@ -394,7 +394,24 @@ class Parser:
                 self.advance()
                 args.append(self.expression())
         self.expect_op(")", f"closing the arguments of {name.text}")
-        return ast.Call(name.loc, name.value, name.text, args)
+        return ast.Call(name.loc, _name(name), name.text, args)
+
+
+# The shared APOSS Token keeps its value as `object`; the DPL lexer stores a str for IDENT and NOTES, an int
+# for INT and a (menu, parameter) pair for PARAM. These accessors state that to the type checker.
+def _name(t: Token) -> str:
+    assert isinstance(t.value, str), t
+    return t.value
+
+
+def _int(t: Token) -> int:
+    assert isinstance(t.value, int), t
+    return t.value
+
+
+def _param(t: Token) -> tuple[int, int]:
+    assert isinstance(t.value, tuple), t
+    return t.value
 
 
 def describe(t: Token) -> str:

@@ -31,6 +31,7 @@ class DplRuntime:
         self.drive = drive
         self.checked = checked
         symbols = checked.symbols
+        assert symbols is not None  # check_source gives the symbols with every program it returns
         self.memory = Memory({name: 0 for name in symbols.variables},
                              {**{name: [0] * size for name, size in symbols.arrays.items()},
                               **{name: list(values) for name, values in symbols.consts.items()}})
@@ -47,7 +48,9 @@ class DplRuntime:
         """Start the program from its Initial task with all variables 0 (a module reset)."""
         for name in self.memory.variables:
             self.memory.variables[name] = 0
-        for name, size in self.checked.symbols.arrays.items():
+        symbols = self.checked.symbols
+        assert symbols is not None  # __init__ took only a checked program
+        for name, size in symbols.arrays.items():
             self.memory.arrays[name][:] = [0] * size
         self._pc = {"Initial": 0, "Background": 0}
         self.error = None
@@ -86,7 +89,8 @@ class DplRuntime:
     # --- tasks -----------------------------------------------------------------------------------------------
     def _run_slice(self, name: str) -> bool:
         """Run task `name` for one slice from where it stopped; True when it has ended."""
-        code: TaskCode = self.code[name]
+        code = self.code[name]
+        assert code is not None  # slice() runs only the tasks the program has
         ops, backward, n = code.ops, code.backward, len(code.ops)
         pc = self._pc[name]
         previous, self.drive.task = self.drive.task, name.lower()
