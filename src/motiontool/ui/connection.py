@@ -61,7 +61,7 @@ class Connection:
         key = interface or self.registry.default.key
         try:
             link = self.registry.link(controller_id, interface=key)
-            ident = link.call("identify")
+            ident = link.identify()
         except (LinkError, ValueError, OSError) as exc:
             self.w.messages.ide(f"Connection to controller {controller_id} failed: {exc}")
             return False
@@ -78,7 +78,7 @@ class Connection:
         self.w.bridge.attach(link, f"Controller {controller_id} ({description})", controller_id=controller_id)
         # ide-spec 2.37: the identity and firmware version on connect
         self.w.messages.ide(f"Connected to controller {controller_id} [{description}] "
-                            f"{ident.get('product', '?')}, {ident.get('firmware', '?')}")
+                            f"{ident.product or '?'}, {ident.firmware or '?'}")
         return True
 
     def connect_default(self) -> bool:
@@ -174,9 +174,9 @@ class Connection:
     def delete_programs_all(self) -> list[int]:
         """Delete Programs all (DG 2528-2534): the saved programs of every controller of the interface."""
         def delete(link) -> bool:
-            programs = link.call("list_programs")
+            programs = link.list_programs()
             for program in programs:
-                link.call("delete_program", number=program["number"])
+                link.delete_program(program.number)
             return bool(programs)
         done = self._each(delete, all_in_range=True)
         self.w.messages.ide(f"Delete Programs all: deleted the programs of controllers {_ids(done)}" if done

@@ -10,6 +10,7 @@ from pathlib import Path
 from PySide6.QtWidgets import QFileDialog, QMessageBox
 
 from motiontool.aposs.driver import CompileResult, compile_source
+from motiontool.comms.client import ArrayInfo
 from motiontool.comms.protocol import LinkError
 from motiontool.dpl.driver import CheckResult, check_source
 from motiontool.dpl.image import DplImage
@@ -234,7 +235,7 @@ class Development:
         offers Reset ▸ Arrays first (decision I20)."""
         if not image.dims:
             return True
-        arrays = wait_off_gui(lambda: link.call("list_arrays"))
+        arrays = wait_off_gui(lambda: link.list_arrays())
         clash = dim_clash(arrays, [(v.name, v.dims) for v in image.dims])
         if clash is None or not ask:
             return True
@@ -249,7 +250,7 @@ class Development:
         chosen = box.clickedButton()
         box.deleteLater()
         if chosen is reset:
-            wait_off_gui(lambda: link.call("reset", what="arrays"))
+            wait_off_gui(lambda: link.reset("arrays"))
             self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: arrays deleted (Reset ▸ Arrays)")
             return True
         return chosen is anyway
@@ -303,13 +304,13 @@ class Development:
             self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: {exc}")
 
 
-def dim_clash(arrays: list[dict], dims: list[tuple[str, list[int]]]) -> str | None:
+def dim_clash(arrays: list[ArrayInfo], dims: list[tuple[str, list[int]]]) -> str | None:
     """What in a program's DIM does not fit the controller's arrays (C:1024-1041: a prefix of the stored arrays
     with the same sizes, new ones appended), or None."""
     for k, (name, shape) in enumerate(dims):
         size = shape[0] * (shape[1] if len(shape) > 1 else 1)
-        if k < len(arrays) and int(arrays[k]["size"]) != size:
+        if k < len(arrays) and int(arrays[k].size) != size:
             return (f"This program's DIM {name}{''.join(f'[{d}]' for d in shape)} ({size} elements) is array "
-                    f"{k + 1}, which the controller already has with {arrays[k]['size']} elements "
-                    f"(\"{arrays[k]['name']}\", DIMmed by an earlier program).")
+                    f"{k + 1}, which the controller already has with {arrays[k].size} elements "
+                    f"(\"{arrays[k].name}\", DIMmed by an earlier program).")
     return None

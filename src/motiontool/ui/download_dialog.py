@@ -9,7 +9,6 @@ controller is only compared."""
 
 from __future__ import annotations
 
-import base64
 import re
 from pathlib import Path
 
@@ -174,11 +173,11 @@ class DownloadDialog(QDialog):
         stored = []
         for cid in ids:
             try:
-                programs = controller_link(self.w, cid).call("list_programs")
+                programs = controller_link(self.w, cid).list_programs()
             except (LinkError, ValueError):
                 continue
             if programs:
-                names = ", ".join(f"{p['number']} {p['name']}" for p in programs)
+                names = ", ".join(f"{p.number} {p.name}" for p in programs)
                 stored.append(f"Controller {cid}: {names}")
         if not stored:
             return True
@@ -200,26 +199,26 @@ class DownloadDialog(QDialog):
                     link.break_program()
                     self.say(f"Controller {cid}: program stopped")
                 self.say(f"Controller {cid}: deleting programs")
-                for program in link.call("list_programs"):
-                    link.call("delete_program", number=program["number"])
+                for program in link.list_programs():
+                    link.delete_program(program.number)
                 link.download(image, number=0, name=name,
                               stack_size=self.w.development.compiler_settings().stack_size)
                 self.say(f"Controller {cid}: saved as \"{name}\" (program 0)")
             if opt["verify"]:
-                stored = base64.b64decode(link.call("upload_program", number=0))
+                stored = link.upload_program(0)
                 if stored != image:
                     self.say(f"Controller {cid}: verify failed: program 0 differs from {self.file.text()}")
                     return False
                 self.say(f"Controller {cid}: verify ok")
             if opt["download"]:
                 if opt["autostart"]:
-                    link.call("set_autostart", number=0)
+                    link.set_autostart(0)
                     self.say(f"Controller {cid}: Autostart set")
                 if opt["eprom"]:
-                    link.call("save_memory", what="ram")
+                    link.save_memory("ram")
                     self.say(f"Controller {cid}: saving RAM")
                 if opt["restart"]:
-                    link.call("power_on")
+                    link.power_on()
                     self.say(f"Controller {cid}: restarted")
         except (LinkError, ValueError) as exc:
             self.say(f"Controller {cid}: {exc}")
