@@ -7,17 +7,46 @@ expression into code that pushes its value and returns its type (long/double).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import TYPE_CHECKING
 
 from motiontool.aposs import ast, image, semantics
 from motiontool.aposs.ast import DOUBLE, LONG
 from motiontool.aposs.constexpr import NotConstant, fold, fold_int
-from motiontool.aposs.diagnostics import CompileError, Location
+from motiontool.aposs.diagnostics import CompileError, DiagnosticSink, Location
 from motiontool.aposs.image import BINOP_OF, MATH_FUNCTIONS, PSEUDO_ARRAYS, SELECTOR_CODES, Op
 from motiontool.aposs.simulated import unserved_note
+
+if TYPE_CHECKING:
+    from motiontool.aposs.codegen import Symbol
 
 
 class ExpressionCode:
     """Expression code for CodeGen: uses its emit/const/lookup/symbol methods."""
+
+    # What this mixin uses of CodeGen, which sets and defines them (codegen.py)
+    program: ast.Program
+    sink: DiagnosticSink
+    img: image.ProgramImage
+    functions: dict[str, int]
+    declared_functions: set[str]
+    func_nodes: dict[str, ast.Function]
+    assigned: set[str]
+
+    if TYPE_CHECKING:
+        @property
+        def pc(self) -> int: ...
+        def emit(self, op: Op, arg: int = 0) -> int: ...
+        def const_double(self, value: float) -> int: ...
+        def const_string(self, value: str) -> int: ...
+        def lookup(self, name: str) -> Symbol | None: ...
+        def scalar(self, name: str, text: str, loc: Location, assigning: bool) -> Symbol: ...
+        def array(self, name: str, text: str, loc: Location) -> Symbol: ...
+        def push_array(self, sym: Symbol) -> None: ...
+        def element_address(self, target: ast.Index) -> Symbol: ...
+        def stable(self, target: ast.Expr) -> ast.Expr: ...
+        def store(self, target: ast.Expr, value: Callable[[], str], source: ast.Expr | None = None) -> None: ...
+        def _incremented(self, target: ast.Expr, op: str) -> str: ...
 
     # --- expressions --------------------------------------------------------------------------------
     def convert(self, have: str, want: str) -> None:

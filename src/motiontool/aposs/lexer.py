@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+from typing import Any
 
 from motiontool.aposs.diagnostics import CompileError, Diagnostic, Location
 
@@ -20,7 +21,9 @@ PRAGMA = "PRAGMA"  # made by the preprocessor from #pragma for the parser: value
 class Token:
     kind: str
     text: str           # as written (for IDENT: original case)
-    value: object       # int / float / str / upper-case identifier
+    # int / float / str / upper-case identifier / None, as the kind says; Any because every use has checked
+    # the kind (IDENT, INT, ...) first, which a type checker cannot follow to the value
+    value: Any
     loc: Location
     # Macro names this token came out of (no re-expansion inside its own expansion) and
     # the chain of macro uses that produced it, shown as notes in diagnostics.
