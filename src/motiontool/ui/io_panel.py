@@ -192,7 +192,7 @@ class IoPanel(QWidget):
         if link is None:
             return
         self._setting += 1
-        self.jobs.run(lambda: link.call("set_input", number=number, value=value),
+        self.jobs.run(lambda: link.set_input(number, value),
                       lambda result, *, n=number: self._answered(n, result))
 
     def _answered(self, number: int, result) -> None:
@@ -211,7 +211,7 @@ class IoPanel(QWidget):
             return
         value = self.sliders[number].value()
         self._analog_sent[number] = value
-        self.jobs.run(lambda: link.call("set_input", number=number, value=value),
+        self.jobs.run(lambda: link.set_input(number, value),
                       lambda result, *, n=number: self._analog_answered(n, result))
 
     def _analog_answered(self, number: int, result) -> None:
@@ -240,7 +240,7 @@ class IoPanel(QWidget):
             return
         self._polling = True
         setting = self._setting
-        self.jobs.run(lambda: link.call("read_signals", signals=["INPUTS", "OUTPUTS"]),
+        self.jobs.run(lambda: link.read_signals(["INPUTS", "OUTPUTS"]),
                       lambda result, *, s=setting: self._polled(result, s))
 
     def _polled(self, result, setting_before: int) -> None:
@@ -278,10 +278,10 @@ class IoPanel(QWidget):
         self.timer.setInterval(max(POLL_MS, round(link.status_interval_s * 1000)))
         if self.isVisible():
             self.timer.start()
-        self.jobs.run(lambda: link.call("identify"), self._identified)
+        self.jobs.run(lambda: link.identify(), self._identified)
 
     def _identified(self, ident) -> None:
-        product = "" if isinstance(ident, Exception) else str(ident.get("product", ""))
+        product = "" if isinstance(ident, Exception) else ident.product
         self.can_set = product.startswith("MCO 305") and "simulated" in product
         why = "" if self.can_set else (
             f"The inputs of {product or 'this controller'} cannot be set from here: the link's set_input request "

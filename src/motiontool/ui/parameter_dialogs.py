@@ -474,7 +474,7 @@ class NameDialog(QDialog):
             return
         self.name.clear()
         self._busy("reading …")
-        self.jobs.run(lambda: link.call("identify").get("name", ""), self._read)
+        self.jobs.run(lambda: link.identify().name, self._read)
 
     def _read(self, result) -> None:
         self._busy(None)
@@ -523,7 +523,7 @@ class NameDialog(QDialog):
             return
         cid = self._shown
         self._busy("writing …")
-        self.jobs.run(lambda: link.call("set_name", name=name), lambda result: self._written(cid, name, result, then))
+        self.jobs.run(lambda: link.set_name(name), lambda result: self._written(cid, name, result, then))
 
     def _written(self, cid: int, name: str, result, then: Callable[[], None]) -> None:
         self._busy(None)

@@ -15,6 +15,7 @@ import re
 from PySide6.QtCore import QObject, Qt
 from PySide6.QtWidgets import QMessageBox, QToolButton
 
+from motiontool.comms.client import ErrorRecord
 from motiontool.ui.link_jobs import LinkJobs
 
 ARRAY_ERRORS = (170, 175, 176)   # the controller's DIM arrays do not fit the program's DIM (DG 11700-11740)
@@ -68,7 +69,7 @@ class PendingError(QObject):
         if link is None:
             self._explain(cid, number, None)
             return line
-        self.jobs.run(lambda: link.call("error_history"),
+        self.jobs.run(lambda: link.error_history(),
                       lambda history, *, c=cid, n=number, t=time_ms: self._explain(c, n, _detail(history, t, n)))
         return line
 
@@ -112,13 +113,13 @@ class PendingError(QObject):
         status = self.w.bridge.last_status
         said = f"error {status.error} cleared" if status is not None and status.error else "error cleared"
         if link is not None:
-            self.jobs.run(lambda: link.call("clear_error"),
+            self.jobs.run(lambda: link.clear_error(),
                           lambda result, *, c=cid, s=said: self._done(c, result, s))
 
     def reset_arrays_and_clear(self) -> None:
         link, cid = self._link(), self.w.bridge.controller_id
         if link is not None:
-            self.jobs.run(lambda: (link.call("reset", what="arrays"), link.call("clear_error")),
+            self.jobs.run(lambda: (link.reset("arrays"), link.clear_error()),
                           lambda result, *, c=cid: self._done(c, result, "arrays deleted, error cleared"))
 
     def restart(self, *, ask: bool = True) -> None:
@@ -132,7 +133,7 @@ class PendingError(QObject):
                 self.w, "Restart", f"Switch controller {cid} off and on? The program stops and the pending error "
                 "is cleared; stored programs, parameters and arrays are kept.") != QMessageBox.StandardButton.Yes:
             return
-        self.jobs.run(lambda: link.call("power_on"),
+        self.jobs.run(lambda: link.power_on(),
                       lambda result, *, c=cid: self._done(c, result, "restarted (switched off and on)"))
 
     def _done(self, cid: int, result, said: str) -> None:
@@ -176,10 +177,10 @@ def _plain(text: str, number: int) -> str:
     return text[len(prefix):] if text.startswith(prefix) else text
 
 
-def _detail(history, time_ms: int, number: int) -> str | None:
+def _detail(history: list[ErrorRecord] | Exception, time_ms: int, number: int) -> str | None:
     if isinstance(history, Exception):
         return None
     for record in reversed(history):
-        if record.get("time_ms") == time_ms and record.get("number") == number:
-            return record.get("detail") or None
+        if record.time_ms == time_ms and record.number == number:
+            return record.detail or None
     return None
