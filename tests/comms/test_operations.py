@@ -107,13 +107,13 @@ def test_every_signal_the_controller_lists_can_be_read_and_streamed(kind):
 STRING_DOOR = re.compile(r"""\.call\(\s*["']""")
 
 
-def string_door_calls(*, leave_out: tuple[str, ...] = ()) -> list[str]:
+def string_door_calls() -> list[str]:
     """Where a module of src/motiontool outside comms/ (the client's own package) asks through `call("op", ...)`."""
     package = ROOT / "src" / "motiontool"
     found = []
     for path in sorted(package.rglob("*.py")):
         where = path.relative_to(package).as_posix()
-        if where.startswith(("comms/", *leave_out)):
+        if where.startswith("comms/"):
             continue
         for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), start=1):
             if STRING_DOOR.search(line):
@@ -121,12 +121,7 @@ def string_door_calls(*, leave_out: tuple[str, ...] = ()) -> list[str]:
     return found
 
 
-def test_no_module_but_the_ui_asks_through_the_string_door():
+def test_no_module_asks_through_the_string_door():
     """The typed client is how the IDE asks a controller (issue 27 item 1): a value can be followed from the
     dialog, the scope or the CLI to the operation that answers it."""
-    assert string_door_calls(leave_out=("ui/",)) == []
-
-
-@pytest.mark.xfail(strict=True, reason="ui/ is migrated by another change")
-def test_no_module_asks_through_the_string_door():
     assert string_door_calls() == []
