@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -330,7 +331,7 @@ def walk(body: list[Stmt]):
             yield from walk(inner)
 
 
-def _children_function(node: Node):
+def _children_function(node: Node) -> Callable[[Any], list[Expr]]:
     """How to list the child expressions of nodes of this type."""
     if isinstance(node, (Unary,)):
         return lambda node: [node.operand]
@@ -371,7 +372,7 @@ def _children_function(node: Node):
     return lambda node: []
 
 
-_CHILDREN_BY_TYPE: dict[type, object] = {}
+_CHILDREN_BY_TYPE: dict[type, Callable[[Any], list[Expr]]] = {}
 
 
 def child_exprs(node: Node) -> list[Expr]:

@@ -197,6 +197,7 @@ class CodeGen(ExpressionCode):
                                   "smaller", decl.loc)
         elif self.locals is not None:
             func = self.current_function
+            assert func is not None  # function_body sets it with self.locals and clears both
             kind_ = "larray" if decl.dims else "local"
             scope[decl.name] = Symbol(kind_, len(func.locals), type_, decl.dims, decl.loc)
             func.locals.append(image.Variable(decl.text, type_, list(decl.dims)))
@@ -232,6 +233,7 @@ class CodeGen(ExpressionCode):
             self.locals[p.name] = Symbol("larray" if p.is_array else "local", i, p.type, [0] if p.is_array else [],
                                          p.loc)
         self.labels, self.label_fixups, self.loop_fixups = {}, [], []
+        assert func.body is not None  # generate() passes only functions with a body, not prototypes
         self.block(func.body)
         self._resolve_labels()
         self.emit(Op.PUSH, 0)  # falling off the end returns 0 (C:3735-3744 has functions without return)
@@ -312,6 +314,7 @@ class CodeGen(ExpressionCode):
 
     def s_Return(self, s: ast.Return) -> None:
         func = self.current_function
+        assert func is not None  # the parser takes RETURN only inside a function's body (Parser._stmt_return)
         if s.value is None:
             self.emit(Op.PUSH, 0)
             self.convert(LONG, func.type)
@@ -337,7 +340,7 @@ class CodeGen(ExpressionCode):
         if isinstance(target, ast.BitSel):
             return ast.BitSel(target.loc, target.kind, self.stable(target.base), target.index)
         if isinstance(target, ast.Index) and any(not isinstance(i, ast.Num) for i in target.indices):
-            fixed = []
+            fixed: list[ast.Expr] = []
             for index in target.indices:
                 if isinstance(index, ast.Num):
                     fixed.append(index)
@@ -429,7 +432,8 @@ class CodeGen(ExpressionCode):
         slot = self.temp()
         self.to_long(self.expr(s.value))
         self.emit(Op.STOREG, slot)
-        tests, seen = [], {}
+        tests: list[tuple[int, int]] = []
+        seen: dict[int, Location] = {}
         default_index = None
         for i, (values, _, _) in enumerate(s.cases):
             if not values:
@@ -458,8 +462,7 @@ class CodeGen(ExpressionCode):
             self.patch(pc, self.pc)
 
     def s_OnInterrupt(self, s: ast.OnInterrupt) -> None:
-        value = fold_int(s.value) if s.value is not None else None
-        if value is not None:
+        if s.value is not None and (value := fold_int(s.value)) is not None:
             problem = _interrupt_range(s.kind, value)
             if problem:
                 raise CompileError(problem, s.value.loc)

@@ -19,8 +19,7 @@ def fold(expr: ast.Expr) -> int | float:
         if expr.op == "-":
             return semantics.wrap(-v) if isinstance(v, int) else -v
         if expr.op == "~":
-            _need_long(v, "~")
-            return semantics.wrap(~v)
+            return semantics.wrap(~_need_long(v, "~"))
         if expr.op == "NOT":
             return int(v == 0)
         if expr.op == "(long)":
@@ -37,9 +36,7 @@ def fold(expr: ast.Expr) -> int | float:
         return semantics.double_binary(expr.op, float(a), float(b))
     if isinstance(expr, ast.BitSel):
         v, n = fold(expr.base), fold(expr.index)
-        _need_long(v, "a bit selector")
-        _need_long(n, "a bit number")
-        return semantics.bit_get(v, expr.kind, n)
+        return semantics.bit_get(_need_long(v, "a bit selector"), expr.kind, _need_long(n, "a bit number"))
     if isinstance(expr, ast.CmdExpr) and expr.command.kind in ("function", "sysvar"):
         name = expr.command.name
         if name == "PI":
@@ -52,9 +49,10 @@ def fold(expr: ast.Expr) -> int | float:
     raise NotConstant
 
 
-def _need_long(v: int | float, what: str) -> None:
+def _need_long(v: int | float, what: str) -> int:
     if not isinstance(v, int):
         raise semantics.OperatorError(f"{what} needs a LONG value")
+    return v
 
 
 def fold_int(expr: ast.Expr) -> int | None:

@@ -45,8 +45,8 @@ def operand(img: ProgramImage, op: Op, arg: int) -> str:
         sign = "+-"[i.sign < 0] if i.kind in ("APOS", "IPOS", "MAPOS", "MCPOS", "MIPOS") else ""
         return f"{'DELETE ' if i.delete else ''}{sign}{i.kind} → {target}"
     if op == Op.LOOP:
-        slot, target = img.loops[arg]
-        return f"{img.globals[slot].name} → {target}"
+        slot, loop_start = img.loops[arg]
+        return f"{img.globals[slot].name} → {loop_start}"
     if op in (Op.PUSH, Op.JMP, Op.JZ, Op.JNZ, Op.LOADL, Op.STOREL, Op.REFL, Op.ARRL, Op.PRINTNL, Op.STMT):
         return str(arg)
     return ""

@@ -302,6 +302,8 @@ class _JsonCursor:
                     i = self._ws(i + 1)
             return i + 1
         m = self._SCALAR.match(self.text, i)
+        if m is None:  # no value here ('}' or ']' already): the caller then gives no offset
+            raise ValueError(f"no JSON value at {i}")
         return m.end()
 
     def find(self, path: list, i: int = 0) -> int | None:

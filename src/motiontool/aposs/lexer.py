@@ -117,6 +117,7 @@ def tokenize(text: str, file: str, line: int = 1, col: int = 1,
                 detail = " (APOSS divides with '%')"
             raise CompileError(f"unexpected character '{ch}'{detail}", loc_at(pos))
         kind = m.lastgroup
+        assert kind is not None and m.lastindex is not None  # each alternative of _TOKEN is a named group
         start, end = m.start(m.lastindex), m.end()
         if kind == "ident":
             word = text[start:end]
@@ -169,7 +170,9 @@ def tokenize(text: str, file: str, line: int = 1, col: int = 1,
         else:  # numbers
             word = text[start:end]
             if end < n and _BAD_NUMBER_TAIL.match(text, end):
-                tail = re.match(r"[A-Za-z0-9_]*", text[end:]).group()
+                tail_match = re.match(r"[A-Za-z0-9_]*", text[end:])
+                assert tail_match is not None  # '*' matches even no character
+                tail = tail_match.group()
                 raise CompileError(f"invalid number '{word}{tail}'", loc_at(start))
             negated = bool(tokens) and tokens[-1].is_op("-")
             if kind == "int" and word[0] == "0" and tokens and tokens[-1].kind == IDENT \
