@@ -136,6 +136,7 @@ def compile_file(path: Path, output: Path, include_dirs: list[Path] | None = Non
             print(d.format(), file=out)
         if not result.ok:
             return 1
+        assert result.image is not None  # compile_source leaves it None only with an error
         atomic_write_bytes(output, result.image.to_bytes())
     except OSError as exc:
         print(f"motiontool compile: {write_error(output, exc)}", file=sys.stderr)

@@ -193,8 +193,8 @@ class Parser(ExpressionParser):
             return ast.ArrayCopy(t.loc, t.value, src.value, t.text, src.text)
         if t.value in _OPENER_OF:
             raise self.error(f"{t.text} without {_OPENER_OF[t.value]}", t)
-        if self.commands.get(t.value) is not None and self.match_command() is None and \
-                self.commands.get(t.value).kind in ("keyword", "operator", "interrupt"):
+        if (entry := self.commands.get(t.value)) is not None and self.match_command() is None and \
+                entry.kind in ("keyword", "operator", "interrupt"):
             raise self.error(f"'{t.text}' cannot start a statement here", t)
         command = self.match_command()
         if command is not None and command.kind == "pseudoarray":
@@ -294,7 +294,7 @@ class Parser(ExpressionParser):
             raise self.error("SWITCH needs a value")
         value = self.expression()
         self._end_statement("the SWITCH value")
-        cases: list[tuple[list[ast.Expr], list[ast.Stmt], object]] = []
+        cases: list[tuple[list[ast.Expr], list[ast.Stmt], Location]] = []
         self._skip_newlines()
         while not self.tok.is_word("ENDSWITCH"):
             t = self.tok
@@ -472,8 +472,8 @@ class Parser(ExpressionParser):
                                  f"ENDPROG; found {describe(t)}")
             self.advance()
             name = self.expect_ident("the subprogram's name")
-            if self.commands.get(name.value) is not None:
-                self.warnings.append(subprogram_name_warning(name, self.commands.get(name.value).kind))
+            if (entry := self.commands.get(name.value)) is not None:
+                self.warnings.append(subprogram_name_warning(name, entry.kind))
             self._end_statement("SUBPROG name")
             body, end = self.block(("RETURN",), t, "RETURN")
             self.advance()

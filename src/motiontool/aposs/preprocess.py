@@ -125,6 +125,7 @@ class Preprocessor:
         body = re.sub(r"\\\r?\n", " ", tok.value)
         plain = re.sub(r"/\*.*?\*/", " ", body.split("//")[0])  # directive arguments without comments
         m = re.match(r"\s*([A-Za-z_]\w*)?\s*(.*)$", body, re.S)
+        assert m is not None  # every part of the pattern may match nothing
         word, rest = (m.group(1) or ""), m.group(2).strip()
         active = not conds or conds[-1].active
         if word.lower() == "include" and word != "include":
@@ -285,8 +286,11 @@ class Preprocessor:
             toks[i:end] = made
         return toks
 
-    def _collect_args(self, toks: list[Token], start: int, macro: Macro, use: Token):
-        depth, args, current, j = 0, [], [], start + 1
+    def _collect_args(self, toks: list[Token], start: int, macro: Macro, use: Token) -> tuple[list[list[Token]], int]:
+        assert macro.params is not None  # _expand collects arguments only for a function-like macro
+        depth, j = 0, start + 1
+        args: list[list[Token]] = []
+        current: list[Token] = []
         while j < len(toks):
             t = toks[j]
             if t.is_op("(", "["):

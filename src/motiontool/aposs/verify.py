@@ -102,12 +102,13 @@ def _check_tables(img: ProgramImage) -> None:
                  f"{field}.locals[{j}]", "not a LONG or DOUBLE variable or array")
     for k, s in enumerate(img.subprograms):
         need(0 <= s.entry < n, f"subprograms[{k}].entry", f"{s.entry} is outside the code (0..{n - 1})")
-    table = command_table()
+    commands = command_table()
     for k, c in enumerate(img.calls):
         field = f"calls[{k}]"
-        cmd = table.get(c.command)
+        cmd = commands.get(c.command)
         need(cmd is not None and cmd.kind in ("command", "function", "sysvar"), field + ".command",
              f"{c.command!r} is not a controller command")
+        assert cmd is not None  # need() raised otherwise
         need(c.returns == cmd.returns, field + ".returns", f"{c.command} returns {cmd.returns}, not {c.returns}")
         least = sum(1 for a in cmd.args if not a.optional)
         most = math.inf if any(a.repeat for a in cmd.args) else len(cmd.args)
@@ -369,6 +370,7 @@ class _Flow:
 
     def command(self, pc: int, call, pop) -> None:
         cmd = command_table().get(call.command)
+        assert cmd is not None  # verify() ran _check_tables first: every call names a controller command
         specs = list(cmd.args)
         if specs and specs[-1].repeat:
             specs = specs[:-1] + [specs[-1]] * max(1, call.argc - len(specs) + 1)
