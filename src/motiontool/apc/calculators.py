@@ -64,7 +64,8 @@ def trapezoid_from_times(a1, a2, a3, pst: int, vm) -> Trapezoid:
     amt = a1 + a2 + a3
     pmt = amt * vm
     pma, pms, pmd = a1 / amt * pmt, a2 / amt * pmt, a3 / amt * pmt
-    return Trapezoid(tuple(map(round_half_down, (pma, pms, pmd))), tuple(map(round_half_down, (psa, pss, psd))))
+    return Trapezoid((round_half_down(pma), round_half_down(pms), round_half_down(pmd)),
+                     (round_half_down(psa), round_half_down(pss), round_half_down(psd)))
 
 
 @dataclass(frozen=True)

@@ -68,13 +68,16 @@ class Cam:
     def array_size(self) -> int:   # [84]
         return len(self.in_array) if self.in_array is not None else 0
 
-    def initialise(self, in_array, out1, out2=None, interp=None) -> None:
+    def initialise(self, in_array: Sequence[int], out1: Sequence[int], out2: Sequence[int] | None = None,
+                   interp: Sequence[int] | None = None) -> None:
         """APCCamInitialise*: register the arrays (they are read live, so edits act at once, L1528-1531)."""
         self.in_array, self.out1, self.out2, self.interp = in_array, out1, out2, interp
 
     def _inseg(self, seg: int, x: int) -> int:
         """Slave travel after x master counts of segment `seg` (Out1 by its law plus a linear Out2)."""
-        big_x = self.in_array[seg]
+        in_array, out1 = self.in_array, self.out1
+        assert in_array is not None and out1 is not None  # engage() found In and Out1 arrays (_check_window)
+        big_x = in_array[seg]
         if x <= 0:
             return 0
         if x >= big_x:
@@ -82,13 +85,15 @@ class Cam:
         code = self.mode
         if code == -1:
             code = self.interp[seg] if self.interp is not None else 0
-        value = (INTERIOR[code] if 0 <= code < 6 else linear)(x, big_x, self.out1[seg])
+        value = (INTERIOR[code] if 0 <= code < 6 else linear)(x, big_x, out1[seg])
         if self.out2 is not None:
             value += linear(x, big_x, self.out2[seg])
         return value
 
     def _total(self, seg: int) -> int:
-        return self.out1[seg] + (self.out2[seg] if self.out2 is not None else 0)
+        out1 = self.out1
+        assert out1 is not None  # engage() found the arrays
+        return out1[seg] + (self.out2[seg] if self.out2 is not None else 0)
 
     def _check_window(self, start: int, size: int) -> None:
         if size <= 0:
@@ -109,9 +114,11 @@ class Cam:
         self.active_start, self.active_size = window or (self.start_index, self.size)
         self._check_window(self.active_start, self.active_size)
         start, end = self.active_start, self.active_start + self.active_size
+        in_array = self.in_array
+        assert in_array is not None  # _check_window raised without it
         if self.absolute_reset:
             seg, pos = self.reset_index, self.reset_position
-            if not start <= seg < end or not 0 <= pos < max(self.in_array[seg], 1):
+            if not start <= seg < end or not 0 <= pos < max(in_array[seg], 1):
                 raise CamError(ERR_ABS_RESET, f"CAM absolute reset at segment {seg}, position {pos} is outside "
                                               f"the CAM (90.49 = 4)")
         else:
@@ -126,8 +133,10 @@ class Cam:
     def finish_cycle(self) -> None:
         """Single shot selected while running cyclically: finish the present cycle (L1567-1569)."""
         start, end = self.active_start, self.active_start + self.active_size
-        length = sum(self.in_array[k] for k in range(start, end))
-        offset = sum(self.in_array[k] for k in range(start, self.segment)) + self.position
+        in_array = self.in_array
+        assert in_array is not None  # called on an engaged CAM only
+        length = sum(in_array[k] for k in range(start, end))
+        offset = sum(in_array[k] for k in range(start, self.segment)) + self.position
         self._travel = 0
         self._forward_room = length - offset
         self._backward_room = offset if offset > 0 else length
@@ -137,16 +146,20 @@ class Cam:
         """Follow `master_delta` counts of the reference this sample; the slave increment after the ratio.
         Raises CamError on a delta-segment-limit breach (Stop plus the trip, L3524-3546)."""
         self.wrapped = 0
+        in_array = self.in_array
+        assert in_array is not None  # the kernel steps an engaged CAM only
         pos = self.position + master_delta
         if master_delta > 0 and not self.single_shot:
             seg = self.segment
-            big_x = self.in_array[seg]
+            big_x = in_array[seg]
             if pos < big_x:
                 # inside the present segment (the common case): _inseg's interior without its call and end checks
                 code = self.mode
                 if code == -1:
                     code = self.interp[seg] if self.interp is not None else 0
-                now = (INTERIOR[code] if 0 <= code < 6 else linear)(pos, big_x, self.out1[seg])
+                out1 = self.out1
+                assert out1 is not None
+                now = (INTERIOR[code] if 0 <= code < 6 else linear)(pos, big_x, out1[seg])
                 if self.out2 is not None:
                     now += linear(pos, big_x, self.out2[seg])
                 out = now - self._done_here
@@ -164,7 +177,7 @@ class Cam:
             self._travel += master_delta
         if master_delta == 0:
             return self.ratio.step(0) if self.ratio.remainder else 0
-        in_array, limit = self.in_array, self.seg_limit
+        limit = self.seg_limit
         seg, pos = self.segment, self.position + master_delta
         done = self._done_here
         out = 0

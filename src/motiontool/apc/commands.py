@@ -8,6 +8,9 @@ A6) unless the manual prints other outputs; several outputs come back as a tuple
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
 from motiontool.apc import core
 from motiontool.apc.intmath import INT32_MAX, INT32_MIN
 from motiontool.apc.readpars import RAW_OFFSET, READ_PARAMETERS
@@ -17,6 +20,15 @@ from motiontool.apc.units import (
     UserUnits,
     speed_to_rpm_x10,
 )
+
+if TYPE_CHECKING:
+    from motiontool.apc.cam import Cam
+    from motiontool.apc.diglock import DigitalLock
+    from motiontool.apc.driveparams import DriveParameters
+    from motiontool.apc.loop import OutputChannel, PositionLoop
+    from motiontool.apc.profile import ProfileGenerator
+    from motiontool.apc.sources import Source
+    from motiontool.apc.units import EmbeddedConverter, UserDefinedConverter
 
 OK, FAIL, ACCESS_DENY, INVALID = 1, 0, -3, -4
 
@@ -33,11 +45,48 @@ def _in(value: int, lo: int, hi: int) -> bool:
     return isinstance(value, int) and not isinstance(value, bool) and lo <= value <= hi
 
 
-class Conversions:
-    """User-unit conversions at the API boundary: the kernel always works in counts (L2197-2209)."""
+class KernelState:
+    """What the calls read and write of the kernel's state: KernelCore and ApcDrive create it. Declarations for
+    the type checker only (ApcDrive is the calls' mixins on top of KernelCore): nothing here exists at run time."""
 
+    ref: Source
+    fb: Source
+    pg: ProfileGenerator
+    opg: ProfileGenerator
+    cam: Cam
+    dl: DigitalLock
+    loop: PositionLoop
+    channel: OutputChannel
+    params: DriveParameters
+    slots: core.Slots
+    samples: int
+    task: str | None
+    run_mode: int
+    enabled: int
+    reset_status: int
+    reference: int
     user_units: UserUnits | None
     turns_bits: int
+    _was_enabled: bool
+    _reset_request: bool
+    _active: int | None
+    _cam_selected_pass: tuple[int, str] | None
+    # ApcDrive's
+    converter: EmbeddedConverter
+    user_converter: UserDefinedConverter
+    ctsync_out: tuple[int, int, int] | None
+    ctsync_received: tuple[int, int, int, int]
+    _readers: dict[int, Callable[[], int]]
+
+    if TYPE_CHECKING:  # KernelCore's methods; defined here at run time they would hide those
+        def apc_error(self, code: int, text: str) -> None: ...
+        def trip_drive(self, trip: str, text: str = "") -> None: ...
+        def stop_position(self) -> int: ...
+        def _set_offsets(self, select: int) -> None: ...
+
+
+class Conversions(KernelState):
+    """User-unit conversions at the API boundary: the kernel always works in counts (L2197-2209)."""
 
     def _pos_in(self, value: int, rem: int = 0) -> tuple[int, int]:
         """(counts, internal remainder) of a position the program gives."""

@@ -112,7 +112,7 @@ class KernelCore:
         self.offset_user_rem = 0
         self.speed_offset = 0                # [95]
         self.stop_target = 0                 # [176] while Stop is active
-        self._active = None                  # the reference the kernel ran last sample
+        self._active: int | None = None      # the reference the kernel ran last sample
         self._stop_valid = False
         self._cam_selected_pass: tuple[int, str] | None = None   # the POS task pass that selected the CAM
         self._freeze_since: int | None = None
@@ -126,7 +126,8 @@ class KernelCore:
         # the drive speed demands (APC units) latched 3, 2 and 1 samples ago: the output channel's pipeline
         self._demand3 = self._demand2 = self._demand1 = 0
         self._held: tuple[tuple[int, int], int] | None = None   # the output channel's holder (modes 3, 4)
-        self._limit_rpm, self._limit = None, 0   # #1.06 and its speed, cached
+        self._limit_rpm: int | None = None   # #1.06 and its speed, cached
+        self._limit = 0
         self._install_virtual_parameters()
         self.reinit()
 
@@ -159,9 +160,23 @@ class KernelCore:
 
     def _install_virtual_parameters(self) -> None:
         p = self.params
+
+        # factories: each closure keeps its own key, source and attribute
+        def channel_reader(k: tuple[int, int]) -> Callable[[], int]:
+            return lambda: self._channel_parameter(k)
+
+        def value_writer(k: tuple[int, int]) -> Callable[[int], None]:
+            return lambda v: p.values.__setitem__(k, v)
+
+        def source_reader(s: Source, a: str) -> Callable[[], int]:
+            return lambda: int(getattr(s, a))
+
+        def source_writer(s: Source, a: str) -> Callable[[int], None]:
+            return lambda v: setattr(s, a, v if a == "selector" else bool(v))
+
         for key in ((1, 21), (3, 22)):
-            p.readers[key] = lambda k=key: self._channel_parameter(k)
-            p.writers[key] = lambda v, k=key: p.values.__setitem__(k, v)
+            p.readers[key] = channel_reader(key)
+            p.writers[key] = value_writer(key)
         p.readers[(1, 11)] = lambda: self.reference_on
         p.writers[(1, 11)] = lambda v: setattr(self, "drive_enabled", bool(v))   # the run command (A45)
         p.readers[(3, 48)] = lambda: 1          # encoder initialised (L434-437): the simulated one is at once
@@ -181,8 +196,8 @@ class KernelCore:
         for key, source, attr in (((90, 43), self.ref, "selector"), ((90, 44), self.fb, "selector"),
                                   ((90, 45), self.ref, "marker_enabled"), ((90, 46), self.fb, "marker_enabled"),
                                   ((90, 47), self.ref, "freeze_enabled"), ((90, 48), self.fb, "freeze_enabled")):
-            p.readers[key] = lambda s=source, a=attr: int(getattr(s, a))
-            p.writers[key] = lambda v, s=source, a=attr: setattr(s, a, v if a == "selector" else bool(v))
+            p.readers[key] = source_reader(source, attr)
+            p.writers[key] = source_writer(source, attr)
 
     def _set_encoder_lines(self, lines: int) -> None:
         """#3.34: a quadrature encoder gives 4 counts per line (1024 ppr → 4096 counts, L463-469)."""

@@ -67,7 +67,8 @@ class CTSyncLine:
                 if message is None or fault == "missing":
                     d.ctsync_received = (*d.ctsync_received[:3], 0)
                     d.ctsync_counts[2] += missing
-                else:
+                else:  # a message was sent, so this branch means a fault
+                    assert fault is not None
                     d.ctsync_received = (*d.ctsync_received[:3], FAULT_STATUS[fault])
                     d.ctsync_counts[1] += 1
         sent = None

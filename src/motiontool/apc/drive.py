@@ -21,7 +21,9 @@ from motiontool.apc.commands import OK, ControlCommands
 from motiontool.apc.commands_refs import ReferenceCommands
 from motiontool.apc.core import APC_VERSION, KernelCore
 from motiontool.apc.plant import PlantConfig
+from motiontool.apc.profile import ProfileGenerator
 from motiontool.apc.readpars import READ_PARAMETERS, parameter_number
+from motiontool.apc.sources import Source
 from motiontool.apc.units import EmbeddedConverter, UserDefinedConverter, pos_rate_code
 
 
@@ -39,8 +41,11 @@ class ApcDrive(ControlCommands, ReferenceCommands, KernelCore):
         self.ctsync_counts = [0, 0, 0]    # valid, invalid, missing messages (91.17-91.19)
         super().__init__(plant, pos_rate=pos_rate)
         for i, key in enumerate(((91, 17), (91, 18), (91, 19))):
-            self.params.readers[key] = lambda i=i: self.ctsync_counts[i]
+            self.params.readers[key] = self._ctsync_count_reader(i)
         self._readers = self._make_readers()
+
+    def _ctsync_count_reader(self, i: int) -> Callable[[], int]:
+        return lambda: self.ctsync_counts[i]
 
     # --- running ---------------------------------------------------------------------------------------------
     def run_ms(self, ms: float) -> None:
@@ -98,7 +103,7 @@ class ApcDrive(ControlCommands, ReferenceCommands, KernelCore):
             89: lambda: cam.wrapped,
             90: lambda: self.stop_mode, 91: self.stop_position, 92: lambda: self.position_setpoint,
             93: lambda: self.position_offset, 94: lambda: self.speed_setpoint, 95: lambda: self.speed_offset,
-            96: lambda: uu().conv_n if uu() else 1, 97: lambda: uu().conv_d if uu() else 1,
+            96: lambda: u.conv_n if (u := uu()) else 1, 97: lambda: u.conv_d if (u := uu()) else 1,
             100: lambda: self.reference, 101: lambda: self.action_on_freeze, 102: lambda: self.offset_select,
             130: lambda: loop.error, 131: lambda: loop.kp, 132: lambda: loop.p_clamp,
             133: lambda: loop.ratio_num, 134: lambda: loop.ratio_den, 135: lambda: loop.output,
@@ -116,31 +121,44 @@ class ApcDrive(ControlCommands, ReferenceCommands, KernelCore):
             187: pg.output_jerk, 189: opg.output_jerk,
         }
         for base, side in ((20, ref), (40, fb)):
-            r.update({
-                base: lambda s=side: s.position, base + 1: lambda s=side: s.freeze_position,
-                base + 2: lambda s=side: s.freeze_flag, base + 3: lambda s=side: s.marker_position,
-                base + 4: lambda s=side: s.marker_flag, base + 5: lambda s=side: int(s.marker_reset),
-                base + 6: lambda s=side: s.speed(self.turns_bits, self.quarters),
-                base + 7: lambda s=side: int(s.inverted),
-                base + 8: lambda s=side: s.integrated, base + 9: lambda s=side: s.freeze_integrated,
-                base + 10: lambda s=side: s.marker_integrated, base + 11: lambda s=side: s.input,
-                base + 12: lambda s=side: int(s.input_disabled),
-            })
+            r.update(self._source_readers(base, side))
         for base, gen in ((110, pg), (150, opg)):
-            r.update({
-                base: lambda g=gen: g.accel, base + 1: lambda g=gen: g.decel, base + 2: lambda g=gen: g.jerk,
-                base + 3: lambda g=gen: g.max_speed, base + 4: lambda g=gen: int(g.disabled),
-                base + 5: lambda g=gen: g.input_position, base + 6: lambda g=gen: g.input_speed,
-                base + 7: lambda g=gen: g.position, base + 8: gen.output_speed, base + 9: gen.output_acceleration,
-            })
-            for bit in range(10):
-                r[base + 10 + bit] = lambda g=gen, b=bit: (g.flags() >> b) & 1
+            r.update(_generator_readers(base, gen))
         missing = set(READ_PARAMETERS) - set(r)
         assert not missing, f"read parameters without a reader: {sorted(missing)}"
         return r
 
+    def _source_readers(self, base: int, s: Source) -> dict[int, Callable[[], int]]:
+        """[20]-[32] of the reference source, [40]-[52] of the feedback source."""
+        return {
+            base: lambda: s.position, base + 1: lambda: s.freeze_position,
+            base + 2: lambda: s.freeze_flag, base + 3: lambda: s.marker_position,
+            base + 4: lambda: s.marker_flag, base + 5: lambda: int(s.marker_reset),
+            base + 6: lambda: s.speed(self.turns_bits, self.quarters),
+            base + 7: lambda: int(s.inverted),
+            base + 8: lambda: s.integrated, base + 9: lambda: s.freeze_integrated,
+            base + 10: lambda: s.marker_integrated, base + 11: lambda: s.input,
+            base + 12: lambda: int(s.input_disabled),
+        }
+
     def _total_position(self) -> int:
         return intmath.wrap32(self.pg.position + self.opg.position)
+
+
+def _generator_readers(base: int, g: ProfileGenerator) -> dict[int, Callable[[], int]]:
+    """[110]-[129] of the profile generator, [150]-[169] of the offset profile generator."""
+    def flag(b: int) -> Callable[[], int]:
+        return lambda: (g.flags() >> b) & 1
+
+    r: dict[int, Callable[[], int]] = {
+        base: lambda: g.accel, base + 1: lambda: g.decel, base + 2: lambda: g.jerk,
+        base + 3: lambda: g.max_speed, base + 4: lambda: int(g.disabled),
+        base + 5: lambda: g.input_position, base + 6: lambda: g.input_speed,
+        base + 7: lambda: g.position, base + 8: g.output_speed, base + 9: g.output_acceleration,
+    }
+    for bit in range(10):
+        r[base + 10 + bit] = flag(bit)
+    return r
 
 
 # --- signatures -------------------------------------------------------------------------------------------------

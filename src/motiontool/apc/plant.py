@@ -43,8 +43,10 @@ class Plant:
         self.configure(4)
 
     def _set_mark_window(self) -> None:
-        k = math.floor((self.position - self.marker_phase) / REV)
-        self._mark_window = (k * REV + self.marker_phase, (k + 1) * REV + self.marker_phase)
+        phase = self.marker_phase
+        assert phase is not None  # without a marker the window stays infinite: step() never asks for a new one
+        k = math.floor((self.position - phase) / REV)
+        self._mark_window = (k * REV + phase, (k + 1) * REV + phase)
 
     def update_marker_window(self) -> None:
         """After a marker was passed: the marker positions either side of the motor now."""

@@ -83,6 +83,7 @@ class ProfileGenerator:
             self.traj = tj.Trajectory(self.base, (off, self.speed, self.acceleration), pieces, final_offset=float(d))
             self.mode, self.target = "position", target
             self._planned = (self.version, self.turns_bits, linear, decel_from_accel)
+        assert self.traj is not None  # mode "position" comes with its plan (only reset() drops both)
         if self.traj.done:               # resting on the target
             self.prev_speed = self.speed
             self.speed = self.acceleration = self.jerk_out = 0.0
@@ -104,6 +105,7 @@ class ProfileGenerator:
             self._cruise_step(n)
         else:
             self._follow_plan(n)
+            assert self.traj is not None  # mode "speed" comes with its plan
             if self.traj.done:            # reached: continue with exact integer counts
                 off = self._rebase()
                 self._cruise = (speed, round(off * (1 << self.turns_bits)))
@@ -128,6 +130,7 @@ class ProfileGenerator:
 
     # --- stepping -------------------------------------------------------------------------------------------
     def _follow_plan(self, n: int) -> None:
+        assert self.traj is not None  # called in modes "position" and "speed", which have their plan
         off, v, a, j = self.traj.sample(n)
         self.offset = off
         self.prev_speed = self.speed
@@ -168,10 +171,11 @@ class ProfileGenerator:
         scale = 1 << self.turns_bits
         v, a, j = round(self.speed * scale), round(self.acceleration * scale), round(self.jerk_out * scale)
         bits = 0
-        moving = self.mode in ("position", "speed") and not self.traj.done
-        if self.mode == "position" and self.traj.done or self.mode in ("idle", "bypass") and v == 0:
+        traj = self.traj   # not None in modes "position" and "speed"
+        moving = self.mode in ("position", "speed") and traj is not None and not traj.done
+        if self.mode == "position" and traj is not None and traj.done or self.mode in ("idle", "bypass") and v == 0:
             bits |= AT_POS
-        if self.mode == "cruise" or self.mode == "speed" and self.traj.done:
+        if self.mode == "cruise" or self.mode == "speed" and traj is not None and traj.done:
             bits |= AT_SPD
         if j > 0:
             bits |= POS_JERK
