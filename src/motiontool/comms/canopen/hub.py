@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import queue
 import threading
+from collections.abc import Callable
 
 import can
 
@@ -21,6 +22,9 @@ class HubBus(can.BusABC):
     def __init__(self, channel: str, ids: set[int] | None = None, **kwargs):
         self.hub = channel
         self.ids = ids
+        # a receiver that takes frames in the sender's thread (the drive's bridge into the simulation, whose inject
+        # is a deque append): no thread woken per frame, which cost a flooded drive more than the frames did
+        self.on_frame: Callable[[can.Message], None] | None = None
         self._queue: queue.SimpleQueue[can.Message] = queue.SimpleQueue()
         self.channel_info = f"motiontool hub {channel}"
         with _lock:
@@ -34,7 +38,10 @@ class HubBus(can.BusABC):
             # `ids` are CANopen's 11-bit identifiers: a 29-bit frame with the same number is not for a node that
             # asks for them (CiA 301 uses base frames; extended id 0 + 01 01 stopped node 1)
             if peer is not self and (peer.ids is None or can_id in peer.ids and not msg.is_extended_id):
-                peer._queue.put(msg)
+                if peer.on_frame is not None:
+                    peer.on_frame(msg)
+                else:
+                    peer._queue.put(msg)
 
     def _recv_internal(self, timeout: float | None) -> tuple[can.Message | None, bool]:
         try:

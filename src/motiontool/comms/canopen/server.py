@@ -20,6 +20,7 @@ import can
 import canopen
 
 from motiontool.comms.canopen import eds
+from motiontool.comms.canopen.hub import HubBus
 from motiontool.comms.canopen.node import ControllerNode
 from motiontool.comms.canopen.slcan import SlcanServer, open_local_bus
 from motiontool.comms.drive.listeners import exposed, listen_port, warn_exposed
@@ -62,8 +63,12 @@ class CanopenDrive:
         self._can_bus.kernel_sdo_servers = False
         self._can_bus.outlets.append(self._out)
         self._closed = threading.Event()
-        self._thread = threading.Thread(target=self._in, name="canopen-bridge", daemon=True)
-        self._thread.start()
+        self._thread: threading.Thread | None = None
+        if isinstance(self._bridge, HubBus):
+            self._bridge.on_frame = self._take
+        else:
+            self._thread = threading.Thread(target=self._in, name="canopen-bridge", daemon=True)
+            self._thread.start()
 
     def forget_transfers(self, cob_ids) -> None:
         """The master that sent SDO requests on these COB-IDs went away in the middle of a block transfer, maybe."""
@@ -80,10 +85,15 @@ class CanopenDrive:
     def _in(self) -> None:
         while not self._closed.is_set():
             msg = self._bridge.recv(timeout=0.2)
-            if msg is not None and not msg.is_error_frame:
-                frame = to_frame(msg)
-                self._nmt_reset(frame)       # before the controllers boot up: a master waits for the boot-up
-                self._can_bus.inject(frame)
+            if msg is not None:
+                self._take(msg)
+
+    def _take(self, msg: can.Message) -> None:
+        """A frame of the channel into the simulation (the sender's thread on the hub, else the bridge's)."""
+        if not msg.is_error_frame:
+            frame = to_frame(msg)
+            self._nmt_reset(frame)       # before the controllers boot up: a master waits for the boot-up
+            self._can_bus.inject(frame)
 
     def _nmt_reset(self, frame: CanFrame) -> None:
         """NMT Reset Node / Communication (82 or 81, node or 0 for all) reaches the nodes' SDO servers too."""
@@ -98,7 +108,10 @@ class CanopenDrive:
         if self._out in self._can_bus.outlets:
             self._can_bus.outlets.remove(self._out)
         self._can_bus.kernel_sdo_servers = True
-        self._thread.join(timeout=2.0)
+        if isinstance(self._bridge, HubBus):
+            self._bridge.on_frame = None
+        if self._thread is not None:
+            self._thread.join(timeout=2.0)
         self.network.notifier.stop(2.0)
         self.network.bus.shutdown()
         self._bridge.shutdown()
