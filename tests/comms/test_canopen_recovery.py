@@ -114,3 +114,41 @@ def test_a_link_without_subscribers_comes_back_when_its_drive_restarts(options):
         link.close()
         if second is not None:
             second.stop()
+
+
+def test_a_download_of_a_link_that_waits_goes_on_after_a_stall():
+    """With a patience (`run --timeout`, F30) a stall is a pause: the heartbeat consumer says the connection is lost
+    after 1 s and ends the transfer under way (N54); the link sends the same message again once the node is back,
+    and the download does not fail for the lost connection."""
+    drive = DriveProcess("--node", "1", listen=LISTEN.format(0))
+    link = open_link(drive.url + "#1,heartbeat=100")
+    link.patience_s = 60
+    said: list[str] = []
+    link.subscribe(lambda event: said.append(event.text) if event.kind == "connection" else None)
+    outcome: list = []
+
+    def download():
+        try:
+            link.download(os.urandom(400_000), name="big")
+            outcome.append("finished")
+        except LinkError as exc:
+            outcome.append(exc)
+
+    try:
+        worker = threading.Thread(target=download)
+        worker.start()
+        worker.join(1.0)
+        assert worker.is_alive()            # the download is under way
+        drive.proc.send_signal(signal.SIGSTOP)
+        deadline = time.monotonic() + 10
+        while not said and time.monotonic() < deadline:
+            time.sleep(0.05)
+        drive.proc.send_signal(signal.SIGCONT)
+        worker.join(60)
+        # the drive may refuse the image (random bytes) once all of it has arrived; not for the lost connection
+        assert outcome and (outcome[0] == "finished" or not isinstance(outcome[0], ConnectionLost)), outcome
+        assert said and said[0].startswith("lost connection to CANopen node 1 ")
+    finally:
+        link.close()
+        drive.proc.send_signal(signal.SIGCONT)
+        drive.stop()
