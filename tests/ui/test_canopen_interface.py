@@ -71,3 +71,33 @@ def test_canopen_interface_scan_run_and_a_stopped_drive(window, qtbot):
         execute(qtbot, window, 'PRINT "again"\n')
         qtbot.waitUntil(lambda: "[02] again" in window.messages.toPlainText(), timeout=15000)
         window.actions_by_text["Close Interface"].trigger()
+
+
+def test_the_interface_dialog_chooses_the_canopen_sdo_channel(window, qtbot):
+    """Issue 24 item 4 / decision N52: the IDE beside another master on one node takes the node's second SDO server.
+    Settings → Interface has the field (`,sdo=2` in the link); before, the IDE always used channel 1."""
+    with drive_process("--node", "1", listen="canopen:slcan:socket://127.0.0.1:0") as drive:
+        port = drive.url.removeprefix("canopen:")
+
+        def handle(dialog):
+            dialog.kind.setFocus()
+            qtbot.keyClicks(dialog.kind, "CANopen")
+            assert dialog.sdo.isEnabled() and dialog.sdo.currentData() == 1
+            type_into(qtbot, dialog.port.lineEdit(), port)
+            type_into(qtbot, dialog.first, "1")
+            type_into(qtbot, dialog.last, "1")
+            dialog.sdo.setFocus()
+            qtbot.keyClick(dialog.sdo, Qt.Key.Key_Down)
+            assert dialog.sdo.currentData() == 2
+            if not dialog.default.isChecked():
+                qtbot.mouseClick(dialog.default, Qt.MouseButton.LeftButton)
+            click_ok(qtbot, dialog)
+        answer_dialog(qtbot, handle)
+        window.actions_by_text["Interface..."].trigger()
+        assert int(window.settings.value("interface/canopen/sdo")) == 2
+        select_controller(qtbot, window, "Controller 1")
+        links = [link for _, link in window.controllers.open_links(interface=f"canopen:{port}")]
+        assert links and links[0].sdo_channel == 2
+        execute(qtbot, window, 'PRINT "over SDO 2"\n')
+        qtbot.waitUntil(lambda: "[01] over SDO 2" in window.messages.toPlainText(), timeout=15000)
+        window.actions_by_text["Close Interface"].trigger()

@@ -30,6 +30,7 @@ class InterfaceConfig:
     baud: int = 9600
     first: int = 1
     last: int = 4
+    sdo: int = 1                  # CANopen: the SDO channel (2: the node's second server, beside another master, N52)
 
     @property
     def key(self) -> str:
@@ -49,8 +50,8 @@ class InterfaceConfig:
     def spec(self, controller_id: int) -> str:
         if self.kind == "sim":
             return "sim"
-        baud = f",baud={self.baud}" if self.kind == "fc" else ""
-        return f"{self.kind}:{self.port}#{controller_id}{baud}"
+        option = f",baud={self.baud}" if self.kind == "fc" else f",sdo={self.sdo}" if self.sdo != 1 else ""
+        return f"{self.kind}:{self.port}#{controller_id}{option}"
 
     @property
     def scan_range(self) -> range:

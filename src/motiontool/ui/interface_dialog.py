@@ -50,15 +50,18 @@ def load_interfaces(settings: QSettings) -> tuple[dict[str, InterfaceConfig], st
                 kind, str(settings.value(f"interface/{kind}/port", default.port)),
                 int(settings.value(f"interface/{kind}/baud", default.baud)),
                 int(settings.value(f"interface/{kind}/first", default.first)),
-                int(settings.value(f"interface/{kind}/last", default.last)))
+                int(settings.value(f"interface/{kind}/last", default.last)),
+                int(settings.value(f"interface/{kind}/sdo", default.sdo)) if kind == "canopen" else 1)
         except (TypeError, ValueError):
             configs[kind] = default
+        if configs[kind].sdo not in (1, 2):     # a damaged settings file: the channel the node always has
+            configs[kind] = replace(configs[kind], sdo=1)
     kind = str(settings.value("interface/default", "sim"))
     return configs, kind if kind in configs else "sim"
 
 
 def save_interface(settings: QSettings, config: InterfaceConfig, *, default: bool) -> None:
-    for name in ("port", "baud", "first", "last"):
+    for name in ("port", "baud", "first", "last", "sdo"):
         settings.setValue(f"interface/{config.kind}/{name}", getattr(config, name))
     if default:
         settings.setValue("interface/default", config.kind)
@@ -93,6 +96,11 @@ class InterfaceSettingsDialog(QDialog):
         self.baud = QComboBox()
         for baud in BAUDS:
             self.baud.addItem(str(baud), baud)
+        self.sdo = QComboBox()
+        self.sdo.addItem("1 (0x600 / 0x580 + node)", 1)
+        self.sdo.addItem("2 (0x100 / 0x680 + node: beside another master)", 2)
+        self.sdo.setToolTip("CANopen: the node's SDO server the IDE talks to; choose 2 when another master (a PLC, "
+                            "the command line) uses 1 (DG 7317-7349)")
         self.first, self.last = QSpinBox(), QSpinBox()
         for box in (self.first, self.last):
             box.setRange(1, 126)
@@ -101,6 +109,7 @@ class InterfaceSettingsDialog(QDialog):
         form.addRow("Interface type:", self.kind)
         form.addRow("Port or URL:", self.port)
         form.addRow("Baud rate:", self.baud)
+        form.addRow("SDO channel:", self.sdo)
         scan = QHBoxLayout()
         scan.addWidget(self.first)
         scan.addWidget(QLabel("to"))
@@ -134,12 +143,14 @@ class InterfaceSettingsDialog(QDialog):
         wire = kind != "sim"
         self.port.setEnabled(wire)
         self.baud.setEnabled(kind == "fc")      # a CAN adapter's bit rate is the bus's, not ours
+        self.sdo.setCurrentIndex(max(0, self.sdo.findData(config.sdo)))
+        self.sdo.setEnabled(kind == "canopen")
         self._shown = kind
 
     def _read(self, kind: str) -> InterfaceConfig:
         first, last = sorted((self.first.value(), self.last.value()))
         return replace(self.configs[kind], port=self.port.currentText().strip(), baud=int(self.baud.currentData()),
-                       first=first, last=last)
+                       first=first, last=last, sdo=int(self.sdo.currentData()) if kind == "canopen" else 1)
 
     def config(self) -> InterfaceConfig:
         return self._read(self.kind.currentData())
