@@ -33,6 +33,7 @@ from motiontool.scope.derived import KINDS
 from motiontool.scope.select import CHOICES, canonical
 from motiontool.scope.trigger import Trigger
 from motiontool.scope.tune import PID_PARAMETERS, TestConfiguration, TuneResult
+from motiontool.scope.ui.signal_browser import Fetch, SignalBrowser
 
 
 class RecordingDialog(QDialog):
@@ -92,9 +93,10 @@ class AddCurveDialog(QDialog):
     """Add Curve: a link signal (SDO index, SYSVAR, parameter, signal name or program variable) into a
     group or polled; or a derived curve of the existing ones."""
 
-    def __init__(self, groups: list[str], curves: list[str], parent=None):
+    def __init__(self, groups: list[str], curves: list[str], parent=None, fetch: Fetch | None = None):
         super().__init__(parent)
         self.setWindowTitle("Add Curve")
+        self.fetch = fetch      # the controller's list_signals, for Browse… (None: not connected)
         form = QFormLayout(self)
         self.kind = QComboBox()
         self.kind.addItems(["Signal", "Variable", "Derived"])
@@ -103,7 +105,13 @@ class AddCurveDialog(QDialog):
         self.signal.setToolTip("APOS, CPOS, TRACKERR, AVEL …, a parameter (KPROP, 32-60), a SYSVAR index (4097, "
                                "0x01250001) or, for Variable, a program variable (name or array[i]); an APOSS "
                                "suffix records one byte, word or bit of it: 4104.b2, 4104.sw1, 4104.3")
-        form.addRow("Signal / variable:", self.signal)
+        self.browse = QPushButton("Browse…")
+        self.browse.setToolTip("Choose from the signals the controller can record")
+        self.browse.clicked.connect(self.browse_signals)
+        row = QHBoxLayout()
+        row.addWidget(self.signal, 1)
+        row.addWidget(self.browse)
+        form.addRow("Signal / variable:", row)
         self.method = QComboBox()
         self.method.addItems(groups + ["Polled (no group)"])
         form.addRow("Method / group:", self.method)
@@ -125,6 +133,13 @@ class AddCurveDialog(QDialog):
         buttons.accepted.connect(self.accept)
         buttons.rejected.connect(self.reject)
         form.addRow(buttons)
+
+    def browse_signals(self) -> None:
+        browser = SignalBrowser(self.fetch, self)
+        if browser.exec() and browser.choice:
+            self.signal.setText(browser.choice)
+            if self.kind.currentText() != "Signal":
+                self.kind.setCurrentText("Signal")
 
 
 class TunePanel(QWidget):

@@ -299,7 +299,9 @@ class ScopeWindow(RunControl, QMainWindow):
     def add_curve_dialog(self, *, dlg: AddCurveDialog | None = None) -> None:
         """Add Curve; a dialog given here is already filled in (scripted use) and counts as accepted."""
         if dlg is None:
-            dlg = AddCurveDialog([g.name for g in self.scope.groups], [c.name for c in self.scope.curves], self)
+            link = self.link
+            dlg = AddCurveDialog([g.name for g in self.scope.groups], [c.name for c in self.scope.curves], self,
+                                 fetch=link.list_signals if link is not None else None)
             # the group the variant records with, not the first one (Single Shot offered Free Run's, issue 23)
             own = {"free_run": "Test Group (Free Run)", "single_shot": "Test Group (Single Shot)",
                    "polling": "Polled (no group)"}.get(self.scope.variant)
