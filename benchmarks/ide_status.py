@@ -15,7 +15,9 @@ an APOSS window (offscreen) connected to its controller 1, which runs a program 
 - ide_axis_dialog_values_shown: seconds from the menu entry until every value of the dialog is shown,
 - ide_watch_longest_stall / ide_watch_longest_busy: the same while the Watch polls 4 process data and 2 parameters
   every 250 ms for `--seconds` (each poll is 6 requests, ~0.4 s of the line at 9600 baud),
-- ide_watch_polls: Watch polls whose values reached the pane per second.
+- ide_watch_polls: Watch polls whose values reached the pane per second,
+- ide_polling_scope_longest_stall / _longest_busy / _polls: the same while the oscilloscope polls APOS, CPOS and
+  TRACKERR every 100 ms (a poll is one request of 4 signals; the reads go on the scope's poll thread).
 `--baud` sets another baud rate (the names of the first four follow it)."""
 
 import argparse
@@ -85,6 +87,10 @@ def main() -> None:
             print(f"ide_watch_longest_stall: {stall:.0f} ms")
             print(f"ide_watch_longest_busy: {busy:.0f} ms")
             print(f"ide_watch_polls: {polls:.2f} /s")
+            stall, busy, polls = polling_scope(window, args.seconds, QEventLoop, QTimer)
+            print(f"ide_polling_scope_longest_stall: {stall:.0f} ms")
+            print(f"ide_polling_scope_longest_busy: {busy:.0f} ms")
+            print(f"ide_polling_scope_polls: {polls:.2f} /s")
         finally:
             window.bridge.detach(close=False)
             window.controllers.close()
@@ -159,6 +165,30 @@ def watch(window, seconds: float, QEventLoop, QTimer):  # noqa: N803 - Qt's name
     pairs = list(zip(ticks, ticks[1:], strict=False))
     return (1000 * max(b[0] - a[0] for a, b in pairs), 1000 * max(b[1] - a[1] for a, b in pairs),
             len(polls) / seconds)
+
+
+def polling_scope(window, seconds: float, QEventLoop, QTimer):  # noqa: N803 - Qt's names
+    """Tools ▸ Oscilloscope in polling mode, APOS, CPOS and TRACKERR polled every 100 ms for `seconds`: (longest
+    gap of a 10 ms timer in ms, most GUI-thread CPU time in one gap in ms, polls recorded per second)."""
+    window.actions_by_text["Oscilloscope"].trigger()
+    scope = window._scopes[-1]
+    scope.set_variant("polling")
+    scope.poll_box.setValue(100)
+    for signal in ("APOS", "CPOS", "TRACKERR"):
+        scope.add_signal_curve(signal)
+    ticks: list[tuple[float, float]] = []
+    timer = QTimer(window, interval=10, timeout=lambda: ticks.append((time.monotonic(), time.thread_time())))
+    timer.start()
+    scope.start_action.trigger()
+    loop = QEventLoop()
+    QTimer.singleShot(int(1000 * seconds), loop.quit)
+    loop.exec()
+    polls = scope.polling.polls
+    scope.stop_action.trigger()
+    timer.stop()
+    scope.close()
+    pairs = list(zip(ticks, ticks[1:], strict=False))
+    return (1000 * max(b[0] - a[0] for a, b in pairs), 1000 * max(b[1] - a[1] for a, b in pairs), polls / seconds)
 
 
 if __name__ == "__main__":

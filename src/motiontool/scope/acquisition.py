@@ -187,22 +187,34 @@ class Polling:
         self.running = False
 
     def poll(self) -> None:
-        """Read every polled curve once; called every poll_ms by the view's timer (or a test)."""
-        if not self.running:
-            return
+        """Read every polled curve once and add the values (a test, the CLI; the scope window reads on a thread
+        of its own with `read` and adds with `take`)."""
+        if self.running:
+            self.take(*self.read())
+
+    def read(self) -> tuple[list[Curve], list]:
+        """The polled curves and their values, the controller's time last: the link requests only, no curve is
+        touched (so a worker thread may ask them while the window draws)."""
         curves = self.curves()
         signals = [c for c in curves if c.source.method != "variable"]
         variables = [c for c in curves if c.source.method == "variable"]
+        link = self.link
+        if link is None:
+            raise ValueError("no controller to poll")
         began = time.perf_counter()
-        values = self.link.read_signals([c.source.signal for c in signals] + [SYS_CLOCK])
+        values = link.read_signals([c.source.signal for c in signals] + [SYS_CLOCK])
         if variables:  # program variables (DG 5552-5622) come from the debug read of the running program
-            values[-1:-1] = self.link.read_variables([c.source.signal for c in variables])
+            values[-1:-1] = link.read_variables([c.source.signal for c in variables])
         self.request_seconds += time.perf_counter() - began
+        return signals + variables, values
+
+    def take(self, curves: list[Curve], values: list) -> None:
+        """Add one poll's values (`read`) to its curves."""
         now = float(values[-1])
         if now == self._last_time:   # the controller's clock stood since the last poll (a busy simulator host):
             return                   # the same instant twice is no new sample
         self._last_time = now
-        for c, v in zip(signals + variables, values[:-1], strict=True):
+        for c, v in zip(curves, values[:-1], strict=True):
             c.buffer.append(now, float(v) if c.source.select is None else float(apply(c.source.select, [v])[0]))
         self.polls += 1
 

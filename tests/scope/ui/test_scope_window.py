@@ -3,12 +3,13 @@
 Screenshots land in $MOTIONTOOL_SHOTS (default: pytest's tmp dir) for a person to look at."""
 
 import os
+import time
 from pathlib import Path
 
 import numpy as np
 import pytest
 from PySide6.QtCore import QSettings, Qt
-from PySide6.QtWidgets import QMessageBox, QToolButton
+from PySide6.QtWidgets import QApplication, QMessageBox, QToolButton
 
 from motiontool.aposs.driver import compile_source
 from motiontool.comms.embedded import EmbeddedLink
@@ -47,6 +48,16 @@ def run_for(window, link, ms, step=50):
     for _ in range(ms // step):
         link.advance(step)
         window._tick()
+        answered(window)
+
+
+def answered(window) -> None:
+    """The scope asks the recording's status and its polls on threads of their own: let them answer, as the
+    window's event loop does between two display refreshes."""
+    deadline = time.monotonic() + 10
+    while (window.status_job.busy or window.poll_job.busy) and time.monotonic() < deadline:
+        QApplication.processEvents()
+        time.sleep(0.001)
 
 
 @pytest.fixture
@@ -219,9 +230,9 @@ def test_polling_title_shows_rate_and_load(qtbot, link, make, tmp_path):
     click(qtbot, w, w.start_action)
     assert w.windowTitle().endswith("[50ms 9%]")
     start_program(link, POSA)
-    for _ in range(60):
+    for k in range(60):              # the poll timer reads on the poll thread: one sample per controller instant
         link.advance(50)
-        w._poll()
+        qtbot.waitUntil(lambda k=k: w.polling.polls == k + 1, timeout=5000)
     click(qtbot, w, w.stop_action)
     assert len(w.scope.curve("1: KPROP").buffer) == 60
     assert w.list.item_for("1: APOS").parent().text(0) == "Other Curves"   # polled: no group (DG 5406)

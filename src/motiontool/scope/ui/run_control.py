@@ -140,25 +140,25 @@ class RunControl:
         self.redraw()
 
     def _poll(self) -> None:
-        try:
-            self.polling.poll()
-        except LinkError as exc:
-            self.statusBar().showMessage(f"Polling stopped: {exc}", 10000)
+        """Every poll_ms: the reads go on the poll thread, one poll at a time (on a slow line a poll is left out
+        rather than queued: the window never waits for the wire, issue 27 item 2)."""
+        if self.polling.running:
+            self.poll_job.run(self.polling.read, self._polled)
+
+    def _polled(self, result) -> None:
+        if not self.polling.running:
+            return          # stopped while the poll was on the line
+        if isinstance(result, Exception):
+            self.statusBar().showMessage(f"Polling stopped: {result}", 10000)
             self.stop()
+            return
+        self.polling.take(*result)
 
     def _tick(self) -> None:
         if self.single_shot is not None and self.single_shot.running:
             self._ticks += 1
             if self._ticks % LIST_EVERY == 0:  # progress in the title; nothing is drawn (DG 5867)
-                try:
-                    self._recording_status = self.single_shot.status()
-                except LinkError:
-                    self._recording_status = None
-                self._update_title()
-                if self._recording_status is not None and not self._recording_status.running:
-                    # full ('stop when full'): the run has ended, and "when the run ends, the Oscilloscope will
-                    # upload" (DG 5434) - it waited for Stop (issue 23 item 11)
-                    self.stop()
+                self.status_job.run(self.single_shot.status, self._recording_progress)
             return
         if self.free_run is not None and not self.free_run.running and not self.polling.running:
             self._finish_run()  # a single triggered capture is complete
@@ -173,6 +173,17 @@ class RunControl:
             self.list.update_values(mouse_t=self.mouse_t)
             self._update_title()
 
+
+    def _recording_progress(self, status) -> None:
+        """The Single Shot recording's status, asked on the status thread."""
+        if self.single_shot is None or not self.single_shot.running:
+            return
+        self._recording_status = None if isinstance(status, Exception) else status
+        self._update_title()
+        if self._recording_status is not None and not self._recording_status.running:
+            # full ('stop when full'): the run has ended, and "when the run ends, the Oscilloscope will
+            # upload" (DG 5434) - it waited for Stop (issue 23 item 11)
+            self.stop()
 
     def _follow(self, span: tuple[float, float]) -> None:
         """Show the live window (Live box, default 10 s) ending at the newest sample, filling from the left until

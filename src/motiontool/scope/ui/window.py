@@ -49,6 +49,7 @@ from motiontool.scope.ui.curve_list import CurveList
 from motiontool.scope.ui.dialogs import AddCurveDialog, PropertiesDialog, RecordingDialog, TunePanel
 from motiontool.scope.ui.fft import FftView
 from motiontool.scope.ui.list_menu import show_list_menu
+from motiontool.scope.ui.poll_job import PollJob
 from motiontool.scope.ui.run_control import RunControl
 from motiontool.scope.ui.save_name import ask_save_name
 
@@ -119,6 +120,8 @@ class ScopeWindow(RunControl, QMainWindow):
         self.refresh_timer.timeout.connect(self._tick)
         self.poll_timer = QTimer(self)
         self.poll_timer.timeout.connect(self._poll)
+        self.poll_job = PollJob(self)          # the polls' link requests, off the GUI thread
+        self.status_job = PollJob(self, "scope-status")   # the Single Shot recording's progress
         self.tune_timer = QTimer(self)
         self.tune_timer.setInterval(100)
         self.tune_timer.timeout.connect(self._tune_tick)
