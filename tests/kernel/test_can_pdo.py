@@ -162,3 +162,15 @@ def test_frames_from_outside_the_simulation_reach_every_controller():
     sim.can_bus.inject(CanFrame(0x300, b"\x00\x00\x01\x00"))
     sim.run_for(2)
     assert prints(sim, 1) == prints(sim, 2) == ["256"]
+
+
+def test_reset_communication_gives_sdo_server_2_its_power_on_value_again():
+    """CiA 301 7.3.2.2.2: NMT Reset Communication sets the communication objects to their power-on values; the
+    power-on value of 0x1201 is NOT_VALID (DG 7327-7337, decision N52). The virtual drive's CANopen server did so
+    (N51); the simulation of the controllers alone kept SDO 2 valid."""
+    sim = bus({5: "SYSVAR[0x01120101] = 0x105\nSYSVAR[0x01120102] = 0x685\nmain:\nDELAY 10\nGOTO main\n"})
+    sim.run_for(10)
+    assert (objdict.read(sim[5], 0x1201, 1), objdict.read(sim[5], 0x1201, 2)) == (0x105, 0x685)
+    sim.can_bus.inject(CanFrame(0x000, bytes([0x82, 5])))      # NMT Reset Communication of node 5
+    sim.run_for(5)
+    assert (objdict.read(sim[5], 0x1201, 1), objdict.read(sim[5], 0x1201, 2)) == (0x80000105, 0x80000685)

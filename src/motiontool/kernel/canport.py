@@ -19,6 +19,7 @@ from motiontool.kernel.canbus import CanBus, CanFrame
 from motiontool.kernel.canpdo import PdoEngine
 from motiontool.kernel.cansdo import SdoClient, SdoServer
 from motiontool.kernel.errors import ControllerError
+from motiontool.kernel.objdict import sysvar_index
 from motiontool.kernel.sysvars import read_sysvar
 
 CANNR = 3390
@@ -199,6 +200,8 @@ class CanPort:
                     self.heartbeat_ms = 0
                     self.pdo = PdoEngine(self)
                     self.sdo.channels.clear()
+                    for sub in (1, 2):   # SDO server 2 (0x1201): NOT_VALID again, its power-on value (N52)
+                        self.controller.sysvar_memory.pop(sysvar_index(0x1201, sub), None)
                     self.reset_node_pending = data[0] == RESET_NODE
             return
         self.global_message, self.global_new = bytes(data).ljust(8, b"\0"), True
