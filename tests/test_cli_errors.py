@@ -94,6 +94,7 @@ def test_every_command_line_error_exits_1(tmp_path):
     assert proc.returncode == 2  # a controller error keeps its own code
 
 
+@pytest.mark.slow  # several seconds on an idle machine: make test runs it, make test-fast does not
 def test_trace_rows_go_to_the_file_while_the_program_runs(tmp_path):
     """`run --trace` kept every row in memory (~1.8 GB per hour of 1 ms rows) and wrote them at the end. Now the
     rows stream into a temporary file beside the target, which becomes the trace when the run is complete."""

@@ -198,6 +198,7 @@ def assert_write_refused(proc, target, old: bytes | None, reason: str = "File to
     assert not list(target.parent.glob(f".{target.name}.*.tmp"))
 
 
+@pytest.mark.slow  # several seconds on an idle machine: make test runs it, make test-fast does not
 def test_writes_beyond_the_file_size_limit_fail_cleanly(tmp_path, capsys):
     """`ulimit -f 1`: `cam build/import -o` ended in tracebacks, `run --trace` and `cam export -o` exited 0 with a
     truncated file. Each old file is kept: the new one is written beside it and renamed only when complete."""

@@ -46,6 +46,7 @@ def wait_for(condition, seconds: float = 5.0) -> bool:
     return condition()
 
 
+@pytest.mark.slow  # several seconds on an idle machine: make test runs it, make test-fast does not
 def test_python_canopens_remote_node_with_only_the_shipped_eds_reads_and_writes_kprop_and_reads_apos(drive):
     """Issue 15: "A test uses python-canopen's own RemoteNode with nothing but the shipped EDS to read and write
     KPROP and read APOS by SDO" — KPROP is 32-60 at 0x2000 + 3260, APOS 34-50 (decision N1)."""

@@ -138,6 +138,7 @@ def test_waitax_in_synchronisation_returns_at_once():
     assert run.prints == ["on"] and run.controller.axis.mode == "sync"
 
 
+@pytest.mark.slow  # several seconds on an idle machine: make test runs it, make test-fast does not
 def test_d05_position_sync_example_homes_synchronises_and_trims_the_offset():
     """D05 (DG 1007-1137): input 2 homes (input 3 = home switch, I_FUNCTION_3 1), input 1 starts SYNCP;
     OUT 1 shows SYNCSTAT & 4 (inside SYNCACCURACY); input 4 raises SYNCPOSOFFS by the "Offset step" (19-00)

@@ -10,6 +10,8 @@ import subprocess
 import sys
 import zlib
 
+import pytest
+
 from motiontool.aposs.image import MAGIC, MAX_BODY_BYTES
 from motiontool.scope import zbo
 from tests.scope.test_files import example_scope
@@ -66,6 +68,7 @@ def test_capacities_of_all_curves_are_bounded_together(tmp_path):
     assert "curves[2].capacity" in result.stdout and str(zbo.MAX_FILE_SAMPLES) in result.stdout, result
 
 
+@pytest.mark.slow  # several seconds on an idle machine: make test runs it, make test-fast does not
 def test_a_curve_inflating_to_a_gib_stops_at_its_count(tmp_path):
     path = tmp_path / "bomb.zbo"
     path.write_text(json.dumps(_doc(10_000, 4, _bomb(GB))))

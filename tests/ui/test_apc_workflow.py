@@ -7,6 +7,7 @@ Decisions A75 (the browser's table and file), A76 (polled curves on the APC)."""
 
 from __future__ import annotations
 
+import pytest
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QAbstractItemView, QApplication
 
@@ -75,6 +76,7 @@ def set_18_11(qtbot, text: str, *, screenshot: bool = False):
     return edit
 
 
+@pytest.mark.slow  # several seconds on an idle machine: make test runs it, make test-fast does not
 def test_open_the_sample_set_18_11_run_it_and_see_the_reference_on_the_scope(window, qtbot):
     sample = next(a for a in window.dpl_samples_menu.actions() if a.text() == "apc_7_1_position.dpl")
     sample.trigger()                                                   # File ▸ Sample ▸ DPL ▸ §7.1

@@ -40,6 +40,7 @@ def _relative(name: str, ms: int):
     return run_manual(name, ms, settings={"1900": 20000}, inputs=[(1, 1, 1000), (1, 0, 4000), (1, 1, 6000)])
 
 
+@pytest.mark.slow  # several seconds on an idle machine: make test runs it, make test-fast does not
 def test_d02_palletizer_as_printed_repeats_the_box_height_while_input_1_is_held():
     """DG 637-681: "IF (IN 1 == 1) AND (flag == 0) THEN … POSR (GET 1900) … flag = 1 ELSE MOTOR STOP … flag = 0":
     while input 1 stays high the ELSE branch resets the flag on the next pass, so the palletizer goes on moving by the

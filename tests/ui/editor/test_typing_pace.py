@@ -6,6 +6,7 @@ the editor, one key every ~120 ms so the popup has time to open as it does for a
 
 from __future__ import annotations
 
+import pytest
 from PySide6.QtCore import QEvent, Qt
 from PySide6.QtGui import QKeyEvent, QTextCursor
 from PySide6.QtTest import QTest
@@ -41,6 +42,7 @@ def human_type(qtbot, editor, text: str) -> list[bool]:
     return seen
 
 
+@pytest.mark.slow  # several seconds on an idle machine: make test runs it, make test-fast does not
 def test_enter_after_a_keyword_or_a_name_ends_the_line_even_with_the_popup_open(qtbot, editor):
     editor.setPlainText("counter = 0\n")
     editor.moveCursor(QTextCursor.MoveOperation.End)
