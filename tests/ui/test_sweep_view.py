@@ -62,6 +62,9 @@ def test_a_two_parameter_sweep_as_a_heat_map_a_clicked_cell_opens_in_the_scope(w
     qtbot.waitUntil(lambda: bool(view.table.selectionModel().selectedRows()), timeout=3000)
     row = view.table.selectionModel().selectedRows()[0].row()
     assert view.results.points[row].tolist() == [70, 100]
+    x, y = view._mark.getData()
+    assert (list(x), list(y)) == ([2.5], [1.5])                     # the chosen cell is marked on the map
+    assert "KPROP" in view.plot.getAxis("bottom").labelText and "KDER" in view.plot.getAxis("left").labelText
     view.grab().save(str(shot_path("sweep_view.png")))
 
     qtbot.mouseClick(view.seconds, Qt.MouseButton.LeftButton)       # the sweep's --seconds 1
@@ -88,7 +91,7 @@ def test_one_parameter_is_a_line_and_a_failed_point_stays_red_with_its_error(win
     failed = view.table.item(0, view.table.columnCount() - 1)
     assert "32-60=-10" in failed.text() and failed.toolTip() == failed.text()
     assert not [i for i in view.plot.getPlotItem().items if isinstance(i, pg.ImageItem)]
-    (line,) = view.plot.getPlotItem().listDataItems()
+    (line,) = [i for i in view.plot.getPlotItem().listDataItems() if isinstance(i, pg.PlotDataItem)]
     x, _y = line.getData()
     assert list(x) == [-10, 20, 50]
     assert view.program.text() == ""                        # no program open: it is asked for

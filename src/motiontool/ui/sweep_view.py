@@ -32,6 +32,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from motiontool.paramdb import database
 from motiontool.scope.curves import PALETTE, Curve, Scope, Source
 from motiontool.sweep.results import ResultsError, SweepResults, read_results
 from motiontool.ui.link_jobs import LinkJobs
@@ -60,8 +61,10 @@ class SweepView(QMainWindow):
         self.program.setPlaceholderText("the swept program (.m or .dpl): to open a point's run")
         browse = QPushButton("Browse…")
         browse.clicked.connect(self._browse)
-        self.seconds = QDoubleSpinBox(decimals=1, minimum=0.1, maximum=3600.0, value=5.0, suffix=" s")
-        self.seconds.setToolTip("virtual time of the point's run (the sweep's --seconds)")
+        # the sweep's own default; the CSV does not say which --seconds it ran with
+        self.seconds = QDoubleSpinBox(decimals=1, minimum=0.1, maximum=3600.0, value=60.0, suffix=" s")
+        self.seconds.setToolTip("virtual time of the point's run: give the sweep's --seconds (default 60) to see "
+                                "the run its row measured")
         self.open_button = QPushButton("Open Point in Scope")
         self.open_button.clicked.connect(self.open_point)
         self.status = QLabel()
@@ -94,6 +97,7 @@ class SweepView(QMainWindow):
                     item.setToolTip(r.errors[row])
                 table.setItem(row, col, item)
         table.resizeColumnsToContents()
+        table.horizontalHeader().setStretchLastSection(True)    # the error column takes the room that is left
         return table
 
     def _layout(self, browse: QPushButton) -> QWidget:
@@ -125,7 +129,8 @@ class SweepView(QMainWindow):
     def draw(self) -> None:
         r, m = self.results, max(self.measure.currentIndex(), 0)
         self.plot.clear()
-        self.plot.setLabel("bottom", r.keys[0])
+        self._mark = pg.ScatterPlotItem(size=14, pen=pg.mkPen("w", width=2), brush=None, symbol="s")
+        self.plot.setLabel("bottom", _key_label(r.keys[0]))
         if len(r.keys) == 1:
             x, y = r.line(m)
             self.plot.setLabel("left", r.measures[m])
@@ -134,7 +139,7 @@ class SweepView(QMainWindow):
             self.plot.getAxis("left").setTicks(None)
         else:
             xs, ys, grid = r.grid(m)
-            self.plot.setLabel("left", r.keys[1])
+            self.plot.setLabel("left", _key_label(r.keys[1]))
             self.plot.setTitle(r.measures[m] + ("" if len(r.keys) == 2 else " (the last point of each cell)"))
             image = pg.ImageItem(grid)      # cells by index: the parameters need not be evenly spaced
             self.plot.addItem(image)
@@ -149,7 +154,24 @@ class SweepView(QMainWindow):
                 self._bar.setLevels(levels)
             self.plot.getAxis("bottom").setTicks([_ticks(xs)])
             self.plot.getAxis("left").setTicks([_ticks(ys)])
+        self.plot.addItem(self._mark)
+        self._show_mark()
         self.plot.autoRange()
+
+    def _show_mark(self) -> None:
+        """A ring on the plot where the point selected in the table is."""
+        rows = self.table.selectionModel().selectedRows() if hasattr(self, "table") else []
+        if not rows:
+            self._mark.setData([], [])
+            return
+        r, row, m = self.results, rows[0].row(), max(self.measure.currentIndex(), 0)
+        if len(r.keys) == 1:
+            self._mark.setData([float(r.points[row, 0])], [float(r.values[row, m])], symbol="o")
+        else:
+            xs, ys, _ = r.grid(m)
+            i = int(np.searchsorted(xs, r.points[row, 0]))
+            j = int(np.searchsorted(ys, r.points[row, 1]))
+            self._mark.setData([i + 0.5], [j + 0.5], symbol="s")
 
     def _plot_clicked(self, event) -> None:
         """A click on a heat-map cell or near a point of the line selects that point in the table."""
@@ -171,6 +193,7 @@ class SweepView(QMainWindow):
     def _selection_changed(self) -> None:
         rows = self.table.selectionModel().selectedRows()
         self.open_button.setEnabled(bool(rows))
+        self._show_mark()
 
     def _browse(self) -> None:
         chosen, _ = QFileDialog.getOpenFileName(self, "Swept program", self.program.text(),
@@ -251,6 +274,15 @@ def point_scope(run, label: str) -> Scope:
     return scope
 
 
+def _key_label(key: str) -> str:
+    """An MCO parameter with its name ("32-60 KPROP"); anything else (a DPL drive parameter) as given."""
+    try:
+        p = database().get(key)
+    except (KeyError, ValueError):
+        return key
+    return p.label
+
+
 def _shown(value: float) -> str:
     if math.isnan(value):
         return ""
@@ -265,7 +297,10 @@ def _ticks(values: np.ndarray) -> list[tuple[float, str]]:
 
 def open_sweep_results(w) -> SweepView | None:
     """Tools ▸ Sweep Results…: choose a sweep's CSV; the program of the open editor is offered for its runs."""
-    chosen, _ = QFileDialog.getOpenFileName(w, "Sweep Results", "", "Sweep results (*.csv);;All files (*)")
+    editor = w.current_editor()
+    path = editor.file_path if editor is not None else None
+    folder = str(Path(path).parent) if path is not None else ""      # a sweep is usually beside its program
+    chosen, _ = QFileDialog.getOpenFileName(w, "Sweep Results", folder, "Sweep results (*.csv);;All files (*)")
     if not chosen:
         return None
     try:
@@ -273,8 +308,6 @@ def open_sweep_results(w) -> SweepView | None:
     except (ResultsError, OSError) as exc:
         QMessageBox.warning(w, "Sweep Results", str(exc))
         return None
-    editor = w.current_editor()
-    path = editor.file_path if editor is not None else None
     program = str(path) if path is not None and Path(path).suffix.lower() in (".m", ".dpl") else ""
     view = SweepView(results, Path(chosen), program, parent=w)
     view.setWindowFlag(Qt.WindowType.Window)

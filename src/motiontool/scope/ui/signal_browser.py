@@ -48,6 +48,7 @@ class SignalBrowser(QDialog):
             layout.addWidget(widget)
         self.resize(560, 480)
         self.choice: str | None = None
+        self.total = 0           # signals listed (0 until the answer came)
         self.answered.connect(self._fill)
         self._update_ok()
         if fetch is None:
@@ -78,11 +79,12 @@ class SignalBrowser(QDialog):
             item.setToolTip(1, signal.text)
         if groups:
             next(iter(groups.values())).setExpanded(True)
-        self.status.setText(f"{len(result)} signals; type to filter, double-click to take one")
+        self.total = len(result)
         self._apply_filter(self.filter.text())
 
     def _apply_filter(self, text: str) -> None:
         words = text.lower().split()
+        found = 0
         for g in range(self.tree.topLevelItemCount()):
             group = self.tree.topLevelItem(g)
             shown = 0
@@ -93,7 +95,11 @@ class SignalBrowser(QDialog):
                 item.setHidden(hidden)
                 shown += not hidden
             group.setHidden(shown == 0)
+            found += shown
             group.setExpanded(bool(words) and shown > 0 or group.isExpanded() and not words)
+        if self.total:
+            count = f"{found} of {self.total} signals" if words else f"{self.total} signals"
+            self.status.setText(f"{count}; type to filter, double-click to take one")
         self._update_ok()
 
     def _update_ok(self) -> None:
