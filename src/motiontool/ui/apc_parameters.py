@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from PySide6.QtWidgets import QFileDialog, QHBoxLayout, QLabel, QPushButton, QVBoxLayout
+from PySide6.QtWidgets import QFileDialog, QHBoxLayout, QLabel, QPushButton
 
 from motiontool.apc.parameter_menus import MENUS, ApcParam, checked, dump, load
 from motiontool.fileio import MiB, atomic_write_text, read_text, reason, write_error
@@ -40,7 +40,6 @@ class ApcParametersDialog(ParameterPages):
         for title, params in MENUS:
             self.add_group(title, title, COLUMNS, [(p.label, p) for p in params], self._cells, self._tooltip)
         self.groups.setFixedWidth(self.groups.sizeHintForColumn(0) + 2 * self.groups.frameWidth() + 12)
-        self.refresh.clicked.connect(self.read)
         self.save_button, self.restore_button = QPushButton("Save to file..."), QPushButton("Restore from file...")
         self.save_button.clicked.connect(lambda: self.save_dialog())
         self.restore_button.clicked.connect(lambda: self.restore_dialog())
@@ -48,17 +47,7 @@ class ApcParametersDialog(ParameterPages):
         top.addWidget(QLabel("Controller 1: APC simulator"), 1)
         for button in (self.save_button, self.restore_button, self.refresh):
             top.addWidget(button)
-        middle = QHBoxLayout()
-        middle.addWidget(self.groups)
-        middle.addWidget(self.pages, 1)
-        layout = QVBoxLayout(self)
-        layout.addLayout(top)
-        layout.addLayout(middle, 1)
-        layout.addWidget(self.message)
-        layout.addWidget(self.buttons)
-        self.resize(1060, 560)
-        self.groups.setCurrentRow(0)
-        self.read()
+        self.lay_out(top, 1060, 560)
 
     @staticmethod
     def _cells(p: ApcParam) -> tuple[str, ...]:

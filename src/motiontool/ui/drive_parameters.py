@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from decimal import Decimal, InvalidOperation
 
-from PySide6.QtWidgets import QComboBox, QHBoxLayout, QLabel, QVBoxLayout
+from PySide6.QtWidgets import QComboBox, QHBoxLayout, QLabel
 
 from motiontool.cameditor.zbc_drive import write_settings
 from motiontool.kernel.fc300_table import CELSIUS, FC_PARAMETERS, RPM, FCParam
@@ -76,22 +76,11 @@ class DriveParametersDialog(ParameterPages):
             self.add_group(title, menu, COLUMNS, [(p.number, p) for p in FC_PARAMETERS.values()
                                                   if p.number // 100 == menu], self._cells, self._tooltip)
         self.groups.setMaximumWidth(180)
-        self.refresh.clicked.connect(self.read)
         top = QHBoxLayout()
         top.addWidget(QLabel("Controller:"))
         top.addWidget(self.controller, 1)
         top.addWidget(self.refresh)
-        middle = QHBoxLayout()
-        middle.addWidget(self.groups)
-        middle.addWidget(self.pages, 1)
-        layout = QVBoxLayout(self)
-        layout.addLayout(top)
-        layout.addLayout(middle, 1)
-        layout.addWidget(self.message)
-        layout.addWidget(self.buttons)
-        self.resize(1000, 520)
-        self.groups.setCurrentRow(0)
-        self.read()
+        self.lay_out(top, 1000, 520)
 
     def _cells(self, p: FCParam) -> tuple[str, ...]:
         return p.label, p.name, "", UNITS.get(p.number, ""), str(p.conversion), self._range(p)

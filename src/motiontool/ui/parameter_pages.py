@@ -15,6 +15,7 @@ from PySide6.QtWidgets import (
     QAbstractItemView,
     QDialog,
     QDialogButtonBox,
+    QHBoxLayout,
     QHeaderView,
     QLabel,
     QListWidget,
@@ -22,6 +23,7 @@ from PySide6.QtWidgets import (
     QStackedWidget,
     QTableWidget,
     QTableWidgetItem,
+    QVBoxLayout,
 )
 
 from motiontool.ui.link_jobs import LinkJobs
@@ -51,6 +53,7 @@ class ParameterPages(QDialog):
         self.groups, self.pages, self.tables = QListWidget(), QStackedWidget(), {}
         self.groups.currentRowChanged.connect(self.pages.setCurrentIndex)
         self.refresh = QPushButton("Refresh")
+        self.refresh.clicked.connect(lambda: self.read())
         self.message = QLabel("")
         self.message.setWordWrap(True)
         self.buttons = QDialogButtonBox(QDialogButtonBox.StandardButton.Ok | QDialogButtonBox.StandardButton.Cancel)
@@ -64,6 +67,10 @@ class ParameterPages(QDialog):
 
     def parse(self, row: Row) -> int:
         """The raw value of the row's typed text; ValueError with the reason."""
+        raise NotImplementedError
+
+    def read(self) -> None:
+        """Ask the controller for every value (off the GUI thread: `self.jobs`)."""
         raise NotImplementedError
 
     def add_group(self, title: str, key, columns, parameters, cells, tooltip) -> QTableWidget:
@@ -95,6 +102,21 @@ class ParameterPages(QDialog):
         self.tables[key] = table
         self.pages.addWidget(table)
         return table
+
+    def lay_out(self, top: QHBoxLayout, width: int, height: int) -> None:
+        """The subclass's top row above the groups and their pages, the feedback and OK/Cancel; then the values
+        are read."""
+        middle = QHBoxLayout()
+        middle.addWidget(self.groups)
+        middle.addWidget(self.pages, 1)
+        layout = QVBoxLayout(self)
+        layout.addLayout(top)
+        layout.addLayout(middle, 1)
+        layout.addWidget(self.message)
+        layout.addWidget(self.buttons)
+        self.resize(width, height)
+        self.groups.setCurrentRow(0)
+        self.read()
 
     def recheck_others(self, row: Row) -> None:
         """Values whose range depends on `row` (none unless the subclass says)."""
