@@ -160,7 +160,7 @@ class SweepView(QMainWindow):
 
     def _show_mark(self) -> None:
         """A ring on the plot where the point selected in the table is."""
-        rows = self.table.selectionModel().selectedRows() if hasattr(self, "table") else []
+        rows = self.table.selectionModel().selectedRows()
         if not rows:
             self._mark.setData([], [])
             return

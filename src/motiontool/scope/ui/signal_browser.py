@@ -4,11 +4,9 @@ for on a thread of its own, so the dialog opens at once and fills in when the an
 
 from __future__ import annotations
 
-import contextlib
-import threading
 from collections.abc import Callable
 
-from PySide6.QtCore import Qt, Signal
+from PySide6.QtCore import Qt
 from PySide6.QtWidgets import (
     QDialog,
     QDialogButtonBox,
@@ -20,13 +18,12 @@ from PySide6.QtWidgets import (
 )
 
 from motiontool.comms.client import SignalInfo
+from motiontool.scope.ui.poll_job import PollJob
 
 Fetch = Callable[[], list[SignalInfo]]
 
 
 class SignalBrowser(QDialog):
-    answered = Signal(object)    # list[SignalInfo] or the exception, from the reading thread
-
     def __init__(self, fetch: Fetch | None, parent=None):
         super().__init__(parent)
         self.setWindowTitle("Signals of the controller")
@@ -49,21 +46,12 @@ class SignalBrowser(QDialog):
         self.resize(560, 480)
         self.choice: str | None = None
         self.total = 0           # signals listed (0 until the answer came)
-        self.answered.connect(self._fill)
         self._update_ok()
         if fetch is None:
             self.status.setText("Not connected: connect to a controller to browse the signals it can record.")
         else:
             self.status.setText("Reading the controller's signals …")
-            threading.Thread(target=self._read, args=(fetch,), name="signal-list", daemon=True).start()
-
-    def _read(self, fetch: Fetch) -> None:
-        try:
-            result: object = fetch()
-        except Exception as exc:  # noqa: BLE001 - said in the dialog (a refused or lost request)
-            result = exc
-        with contextlib.suppress(RuntimeError):   # the dialog was closed meanwhile
-            self.answered.emit(result)
+            PollJob(self, "signal-list").run(fetch, self._fill)
 
     def _fill(self, result) -> None:
         if isinstance(result, Exception):
