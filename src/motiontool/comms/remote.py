@@ -132,15 +132,17 @@ class RemoteLink(Link):
                                                           else self.restored_text())))
 
     def identify(self) -> Identity:
-        if self._identity is None:       # asked once: it does not change while the link is open
-            self._identity = super().identify()
+        """Asked every time: the name changes (Parameters ▸ Name, here or by another master); the last answer
+        is kept for what cannot change while the link is open (the clock)."""
+        self._identity = super().identify()
         return self._identity
 
     @property
     def virtual_time(self) -> bool:
         """True when the controller's clock moves only on `advance` (a virtual drive started with a virtual
         clock)."""
-        return self.identify().clock == "virtual"
+        identity = self._identity or self.identify()
+        return identity.clock == "virtual"
 
     # --- events ---------------------------------------------------------------------------------------
     def subscribe(self, callback: Callable[[LinkEvent], None]) -> None:
