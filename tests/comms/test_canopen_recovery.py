@@ -152,3 +152,19 @@ def test_a_download_of_a_link_that_waits_goes_on_after_a_stall():
         link.close()
         drive.proc.send_signal(signal.SIGCONT)
         drive.stop()
+
+
+def test_an_open_that_fails_leaves_no_connection_behind():
+    """A CANopen link whose set-up fails (here: a node the drive does not have, so its heartbeat time cannot be
+    read) closes what it opened: each failed open kept an slcan client on the drive, which serves 16."""
+    drive = DriveProcess("--node", "1", listen=LISTEN.format(0))
+    try:
+        before = len(os.listdir("/proc/self/fd"))
+        for _ in range(2):
+            with pytest.raises(LinkError):
+                open_link(drive.url + "#9")
+        assert len(os.listdir("/proc/self/fd")) <= before     # (a thread of an earlier test may close one)
+        link = open_link(drive.url + "#1")
+        link.close()
+    finally:
+        drive.stop()

@@ -115,10 +115,14 @@ class CanopenLink(RemoteLink):
         self._long_transfer = False                   # a link message under way (its answer may take 10 s)
         super().__init__(self._exchange, f"CANopen node {node} on {interface}:{channel}")
         self._connect()
-        if sdo_channel == 2:
-            self._enable_sdo2()
-        self.pdo_stream = PdoStream(self.remote.sdo, self.network, node, self.od, self._publish)
-        self._configure()
+        try:
+            if sdo_channel == 2:
+                self._enable_sdo2()
+            self.pdo_stream = PdoStream(self.remote.sdo, self.network, node, self.od, self._publish)
+            self._configure()
+        except BaseException:     # an open that fails leaves no slcan client on the drive (it takes 16)
+            self._disconnect()
+            raise
         self._watch = threading.Thread(target=self._watchdog, name="canopen-heartbeat", daemon=True)
         self._watch.start()
 
