@@ -67,12 +67,9 @@ class ControllerNode(canopen.LocalNode):
                 server.forget_transfer()
 
     def reset_communication(self) -> None:
-        """NMT Reset Communication / Reset Node: 0x1201 takes its power-on value, NOT_VALID (CiA 301 7.3.2.2.2, N52),
-        before the controller sees the command (the kernel resets the other communication objects, N51). Called with
-        the drive's lock held or not."""
-        with self.drive.lock:
-            for sub, base in ((1, SDO2_RX), (2, SDO2_TX)):
-                objdict.write(self.controller, 0x1201, sub, NOT_VALID | base + self.id, "sdo")
+        """NMT Reset Communication / Reset Node: a transfer under way on SDO 2 ends. The controller itself makes
+        0x1201 NOT_VALID again when it takes the command, before it boots up (kernel/canport.py, N51/N52); written
+        here as a master's SDO write, it fired the program's ON PARAM."""
         self.sdo2.forget_transfer()
 
     @property
