@@ -160,6 +160,7 @@ class Polling:
         self.running = False
         self.polls = 0
         self.request_seconds = 0.0   # measured time the link needed for the reads
+        self.runs = 0                # Start counts: a read of an earlier run that answers late is not taken
         self._last_time: float | None = None
 
     def curves(self) -> list[Curve]:
@@ -181,6 +182,7 @@ class Polling:
             for c in self.curves():
                 c.buffer.clear()
         self._last_time = None
+        self.runs += 1
         self.running = True
 
     def stop(self) -> None:

@@ -3,6 +3,7 @@
 Screenshots land in $MOTIONTOOL_SHOTS (default: pytest's tmp dir) for a person to look at."""
 
 import os
+import threading
 import time
 from pathlib import Path
 
@@ -237,6 +238,35 @@ def test_polling_title_shows_rate_and_load(qtbot, link, make, tmp_path):
     assert len(w.scope.curve("1: KPROP").buffer) == 60
     assert w.list.item_for("1: APOS").parent().text(0) == "Other Curves"   # polled: no group (DG 5406)
     shot(w, "polling", tmp_path)
+
+
+def test_a_poll_of_a_stopped_run_that_answers_late_is_not_taken_into_the_next(qtbot, link, make):
+    """The polls' reads go on a thread of their own (issue 27 item 2); Stop then Start while a read is on a slow
+    line: its answer, of the old run, must not land in the new run's emptied curves."""
+    w = make(link, "polling")
+    w.poll_box.setValue(50)
+    w.add_signal_curve("APOS")
+    held, reads = threading.Event(), []
+    plain = link.read_signals
+
+    def slow_line(signals):
+        values = plain(signals)
+        reads.append(values[-1])   # the controller's time, read last
+        if len(reads) == 1:
+            held.wait(10)          # the first poll's answer (of time 0) is late
+        return values
+
+    link.read_signals = slow_line
+    click(qtbot, w, w.start_action)
+    qtbot.waitUntil(lambda: len(reads) == 1, timeout=5000)
+    click(qtbot, w, w.stop_action)
+    link.advance(500)
+    click(qtbot, w, w.start_action)           # a new run while the old read is still on the line
+    held.set()
+    qtbot.waitUntil(lambda: w.polling.polls >= 1 and not w.poll_job.busy, timeout=5000)
+    click(qtbot, w, w.stop_action)
+    t, _ = w.scope.curve("1: APOS").raw()
+    assert t.size >= 1 and t.min() >= 500        # only samples of the new run
 
 
 def test_saved_file_reopens_offline_with_its_data(qtbot, link, make, tmp_path):

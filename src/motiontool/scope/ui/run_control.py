@@ -143,11 +143,12 @@ class RunControl:
         """Every poll_ms: the reads go on the poll thread, one poll at a time (on a slow line a poll is left out
         rather than queued: the window never waits for the wire, issue 27 item 2)."""
         if self.polling.running:
-            self.poll_job.run(self.polling.read, self._polled)
+            run = self.polling.runs
+            self.poll_job.run(self.polling.read, lambda result: self._polled(run, result))
 
-    def _polled(self, result) -> None:
-        if not self.polling.running:
-            return          # stopped while the poll was on the line
+    def _polled(self, run: int, result) -> None:
+        if not self.polling.running or run != self.polling.runs:
+            return          # stopped (and maybe started again) while the poll was on the line
         if isinstance(result, Exception):
             self.statusBar().showMessage(f"Polling stopped: {result}", 10000)
             self.stop()
@@ -158,7 +159,8 @@ class RunControl:
         if self.single_shot is not None and self.single_shot.running:
             self._ticks += 1
             if self._ticks % LIST_EVERY == 0:  # progress in the title; nothing is drawn (DG 5867)
-                self.status_job.run(self.single_shot.status, self._recording_progress)
+                shot = self.single_shot
+                self.status_job.run(shot.status, lambda status: self._recording_progress(shot, status))
             return
         if self.free_run is not None and not self.free_run.running and not self.polling.running:
             self._finish_run()  # a single triggered capture is complete
@@ -174,9 +176,10 @@ class RunControl:
             self._update_title()
 
 
-    def _recording_progress(self, status) -> None:
-        """The Single Shot recording's status, asked on the status thread."""
-        if self.single_shot is None or not self.single_shot.running:
+    def _recording_progress(self, shot, status) -> None:
+        """The Single Shot recording's status, asked on the status thread (of this recording: a new one started
+        meanwhile is not stopped by its predecessor's last status)."""
+        if self.single_shot is not shot or not shot.running:
             return
         self._recording_status = None if isinstance(status, Exception) else status
         self._update_title()
