@@ -41,6 +41,8 @@ def test_a_value_typed_while_the_previous_write_is_answered_is_written_and_the_r
     pane = window.debugger.watch
     window.actions_by_text["Watch Start"].trigger()
     qtbot.waitUntil(lambda: pane.values()[0] != "", timeout=3000)
+    window.actions_by_text["Watch Stop"].trigger()     # no poll in flight: pending 0 = every answer delivered
+    qtbot.waitUntil(lambda: pane.jobs.pending == 0, timeout=3000)
     gate, answered = threading.Event(), threading.Event()
     written = window.debugger.write_watch
 
@@ -61,12 +63,10 @@ def test_a_value_typed_while_the_previous_write_is_answered_is_written_and_the_r
     line.selectAll()
     qtbot.keyClicks(line, "-4")
     gate.set()
-    qtbot.waitUntil(answered.is_set, timeout=3000)
+    qtbot.waitUntil(lambda: answered.is_set() and pane.jobs.pending == 0, timeout=3000)  # 55's answer is in
     assert window.bridge.link.read_parameter("KPROP") == 55
-    qtbot.wait(500)                                    # the answer and polls arrive: they leave the typing alone
     assert line.isVisible() and line.text() == "-4"
     enter(qtbot, pane.table, line)
     qtbot.waitUntil(lambda: "outside" in pane.table.item(0, 1).toolTip(), timeout=3000)
     assert window.bridge.link.read_parameter("KPROP") == 55
-    window.actions_by_text["Watch Stop"].trigger()
     window.debugger.end()
