@@ -237,7 +237,7 @@ class ParametersDialog(QDialog):
         # all 115 Axis fields at once stood the window still ~150 ms: one group now, one per event-loop pass after
         self._builder = QTimer(self, interval=0, timeout=self._build_group)
         self._link = None
-        self._start_reading(sum(len(parameters) for *_, parameters in self._unbuilt))
+        self._start_reading(self._still_to_build())
         self._build_group()
         if self._unbuilt:
             self._builder.start()
@@ -269,8 +269,11 @@ class ParametersDialog(QDialog):
 
     def read(self) -> None:
         """Every field's value, one request each on the link-jobs thread: the fields fill in as answers arrive."""
-        self._start_reading(len(self.fields))
+        self._start_reading(len(self.fields) + self._still_to_build())   # pages built later ask with this read
         self._request(self.fields)
+
+    def _still_to_build(self) -> int:
+        return sum(len(parameters) for *_, parameters in self._unbuilt)
 
     def _start_reading(self, count: int) -> None:
         self._ticket.cancelled = True
