@@ -59,8 +59,12 @@ def test_the_fused_cam_tick_equals_the_general_one(name: str, monkeypatch):
             out.append([row(c) for c in controllers])
         return out
 
-    fused = rows()
+    steady, fused_tick = [], tick.steady_cam_tick
+    with monkeypatch.context() as m:     # counted: the comparison proves nothing if the fused tick never runs
+        m.setattr(tick, "steady_cam_tick", lambda axis: steady.append(fused_tick(axis)) or steady[-1])
+        fused = rows()
     with monkeypatch.context() as m:
         m.setattr(tick, "steady_cam_tick", lambda axis: False)
         general = rows()
     assert fused == general
+    assert sum(steady) > len(steady) // 2
