@@ -34,6 +34,7 @@ from PySide6.QtWidgets import (
 
 from motiontool.paramdb import database
 from motiontool.scope.curves import PALETTE, Curve, Scope, Source
+from motiontool.sweep.measures import format_value
 from motiontool.sweep.results import ResultsError, SweepResults, read_results
 from motiontool.ui.link_jobs import LinkJobs
 
@@ -203,7 +204,7 @@ class SweepView(QMainWindow):
 
     def open_point(self) -> None:
         rows = self.table.selectionModel().selectedRows()
-        if not rows:
+        if not rows or self.jobs.pending:     # a double click while a point runs does not queue a second one
             return
         row = rows[0].row()
         program = self.program.text().strip()
@@ -284,9 +285,8 @@ def _key_label(key: str) -> str:
 
 
 def _shown(value: float) -> str:
-    if math.isnan(value):
-        return ""
-    return str(int(value)) if value.is_integer() else repr(value)
+    """As the CSV writes it (sweep.measures.format_value); a missing measure is an empty cell."""
+    return "" if math.isnan(value) else format_value(float(value))
 
 
 def _ticks(values: np.ndarray) -> list[tuple[float, str]]:
