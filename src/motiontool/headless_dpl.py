@@ -90,11 +90,13 @@ def run_dpl(path: Path | None, options: RunOptions, err: TextIO) -> int:
     writes.sort(key=lambda w: w[0])
     signals = DPL_SIGNALS if options.signals == MCO_SIGNALS else options.signals
     failed: list[int] = []
-    try:  # rows go to the file as they come (an hour of 1 ms rows was 656 MB in memory; decisions R6, R18)
-        trace = TraceWriter(options.trace, nodes, list(signals)) if options.trace else None
-    except OSError as exc:
-        print(f"motiontool run: {write_error(options.trace, exc)}", file=err)
-        return EXIT_REFUSED
+    trace: TraceWriter | None = None
+    if options.trace:
+        try:  # rows go to the file as they come (an hour of 1 ms rows was 656 MB in memory; decisions R6, R18)
+            trace = TraceWriter(options.trace, nodes, list(signals))
+        except OSError as exc:
+            print(f"motiontool run: {write_error(options.trace, exc)}", file=err)
+            return EXIT_REFUSED
 
     def listener(n: int):
         prefix = f"{n}: " if several else ""

@@ -37,6 +37,12 @@ def parameter_record(p: Parameter) -> Record:
                   not p.read_only)
 
 
+def array_of(record: Record) -> int:
+    """The array number k of an Array record (parse_zba requires it for that kind, add_array gives it)."""
+    assert record.kind == "Array" and record.array is not None, record
+    return record.array
+
+
 def parameter_of(record: Record) -> Parameter | None:
     db = database()
     if record.kind == "User" and 0 <= record.index <= 99:
@@ -153,7 +159,7 @@ class ArrayList:
         arrays: dict[int, list[Row]] = {}
         for row in self.rows:
             if row.record.kind == "Array":
-                arrays.setdefault(row.record.array, []).append(row)
+                arrays.setdefault(array_of(row.record), []).append(row)
         if self.structure_changed:
             link.restore_arrays([
                 (rows[0].record.name or f"array{k}",
@@ -209,7 +215,7 @@ class ArrayList:
         """Expert mode: a new array after the last one, created on the controller at Write (ide-spec 5.27)."""
         if size < 1:
             raise ValueError("an array needs at least one element")
-        k = 1 + max((r.record.array for r in self.rows if r.record.kind == "Array"), default=-1)
+        k = 1 + max((array_of(r.record) for r in self.rows if r.record.kind == "Array"), default=-1)
         self.rows += [Row(Record("Array", k, i, name if i == 1 else ""), None, 0, True) for i in range(1, size + 1)]
         self.structure_changed = True
         return k
@@ -221,8 +227,8 @@ class ArrayList:
             r = row.record
             if r.kind == "Array" and r.array == k:
                 continue
-            if r.kind == "Array" and r.array > k:
-                row = replace(row, record=replace(r, array=r.array - 1))
+            if r.kind == "Array" and array_of(r) > k:
+                row = replace(row, record=replace(r, array=array_of(r) - 1))
             rows.append(row)
         self.rows = rows
         self.structure_changed = True

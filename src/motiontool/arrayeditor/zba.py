@@ -115,12 +115,16 @@ def _number(value: str, line: int, what: str) -> int | float | None:
     raise ZbaError(f"{what} {value!r} is not a number", line)
 
 
-def _int(value: str, line: int, what: str, required: bool = True) -> int | None:
-    if value == "" and not required:
-        return None
+def _int(value: str, line: int, what: str) -> int:
     if not _INT.fullmatch(value) or len(value) > 30:
         raise ZbaError(f"{what} {value!r} is not an integer", line)
     return int(value)
+
+
+def _optional_int(value: str, line: int, what: str, required: bool) -> int | None:
+    if value == "" and not required:
+        return None
+    return _int(value, line, what)
 
 
 def _record(kind: str, fields: list[str], n: int) -> Record:
@@ -135,7 +139,7 @@ def _record(kind: str, fields: list[str], n: int) -> Record:
     if len(fields) != len(FIELDS):
         raise ZbaError(f"a line of type {kind} needs {len(FIELDS)} fields after the type "
                        f"({', '.join(FIELDS)}), it has {len(fields)}", n)
-    array = _int(fields[0], n, "Array", required=kind in ("Axis", "Temp", "Proc", "Array"))
+    array = _optional_int(fields[0], n, "Array", required=kind in ("Axis", "Temp", "Proc", "Array"))
     if kind in ("User", "Global", "System") and array is not None:
         raise ZbaError(f"the Array field of a {kind} line must be empty", n)
     rw = _int(fields[8], n, "RW")

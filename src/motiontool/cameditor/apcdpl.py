@@ -10,6 +10,7 @@ settings the CAM calls registered, so any DPL that sets up a CAM (the manual's t
 from __future__ import annotations
 
 import re
+from dataclasses import dataclass, field
 
 from motiontool.apc import intmath
 from motiontool.cameditor.apctable import MODE_ARRAY, MODE_COSINE, ApcCamTable, ApcSegment
@@ -85,13 +86,26 @@ def table_program(table: ApcCamTable, *, master_rpm: int = 60, counts_per_rev: i
     ]) + "\n"
 
 
+@dataclass
+class _CamCalls:
+    """What the CAM calls set, named as in `_Sandbox.call_dpl`'s table; unset values are the drive's defaults."""
+
+    arrays: dict[str, list[int]] = field(default_factory=dict)
+    start: int = 0
+    size: int | None = None
+    mode: int = 0
+    num: int = 1000
+    den: int = 1000
+    single: bool = False
+    limit: int = 256
+
+
 class _Sandbox:
     """Stands in for the drive while a program's Initial task runs: it answers the language's built-ins and
     records the CAM calls; every other call succeeds and does nothing."""
 
     def __init__(self) -> None:
-        self.cam: dict[str, object] = {"start": 0, "size": None, "mode": 0, "num": 1000, "den": 1000,
-                                       "single": False, "limit": 256}
+        self.cam = _CamCalls()
         self.params = _Parameters()
         self.task = None
         self.pos0 = self.pos1 = None
@@ -123,7 +137,7 @@ class _Sandbox:
                   "APCDISABLECAMSINGLESHOT": ("single", lambda a: False),
                   "APCSETCAMDELTASEGLIMIT": ("limit", lambda a: a[0])}.get(key)
         if record is not None:
-            self.cam[record[0]] = record[1](args)
+            setattr(self.cam, record[0], record[1](args))
         return (1, 1, 1, 1)[:targets]
 
 
@@ -153,17 +167,17 @@ def import_dpl(text: str, path: str = "<cam>.dpl", *, name: str | None = None) -
         raise DplImportError(f"{path}: the Initial task did not end (it waits for something the CAM editor "
                              "cannot give it)")
     cam = sandbox.cam
-    arrays = cam.get("arrays")
+    arrays = cam.arrays
     if not arrays:
         raise DplImportError(f"{path}: the Initial task calls no APCCamInitialise")
     count = min(len(a) for a in arrays.values())
-    laws = arrays.get("law") if cam["mode"] == MODE_ARRAY else None
-    segments = [ApcSegment(arrays["in"][i], arrays["out"][i], laws[i] if laws else max(cam["mode"], 0),
+    laws = arrays.get("law") if cam.mode == MODE_ARRAY else None
+    segments = [ApcSegment(arrays["in"][i], arrays["out"][i], laws[i] if laws else max(cam.mode, 0),
                            arrays["out2"][i] if "out2" in arrays else 0) for i in range(count)]
     stem = name or _stem(text, runtime.memory.arrays, arrays["in"])
     try:
-        return ApcCamTable(stem, tuple(segments), start=cam["start"], size=cam["size"],
-                           ratio=(cam["num"], cam["den"]), single_shot=cam["single"], delta_seg_limit=cam["limit"])
+        return ApcCamTable(stem, tuple(segments), start=cam.start, size=cam.size,
+                           ratio=(cam.num, cam.den), single_shot=cam.single, delta_seg_limit=cam.limit)
     except ValueError as exc:
         raise DplImportError(f"{path}: {exc}") from None
 

@@ -114,8 +114,8 @@ class ConfigFile:
                 break
         else:
             self.curves.append(curve)
-        for i, existing in enumerate(self.arrays):
-            if existing.name == curve.name:
+        for i, array in enumerate(self.arrays):
+            if array.name == curve.name:
                 self.arrays[i] = entry
                 break
         else:

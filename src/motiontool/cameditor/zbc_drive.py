@@ -80,6 +80,6 @@ def write_settings(link, values: dict[str, int]) -> None:
             except LinkError as exc:
                 refused[label] = exc
         if len(refused) == len(left):
-            label, exc = next(iter(refused.items()))
-            raise LinkError(f"FC 300 parameter {label}: the controller refused {left[label]}: {exc}", exc.number)
+            label, first = next(iter(refused.items()))
+            raise LinkError(f"FC 300 parameter {label}: the controller refused {left[label]}: {first}", first.number)
         left = {label: left[label] for label in refused}

@@ -14,6 +14,9 @@ DEFAULT_CAPACITY = 10_000   # the manual's example "max number of samples" (DG 5
 
 class RingBuffer:
     def __init__(self, capacity: int = DEFAULT_CAPACITY):
+        self._allocate(capacity)
+
+    def _allocate(self, capacity: int) -> None:
         if capacity < 1:
             raise ValueError(f"sample limit {capacity}: at least 1")
         self.capacity = int(capacity)
@@ -68,7 +71,7 @@ class RingBuffer:
     def set_capacity(self, capacity: int) -> None:
         """Change the sample limit keeping the newest samples."""
         t, y = (a.copy() for a in self.arrays())
-        self.__init__(capacity)
+        self._allocate(capacity)
         self.extend(t, y)
 
 

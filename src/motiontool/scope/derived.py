@@ -107,8 +107,9 @@ def bit_mask(y: np.ndarray, mask: int, signed: bool) -> np.ndarray:
 
 
 # --- expressions ---------------------------------------------------------------------------------------------
-_FUNCTIONS = {"abs": np.abs, "sqrt": np.sqrt, "sin": np.sin, "cos": np.cos, "tan": np.tan, "exp": np.exp,
-              "log": np.log, "min": np.minimum, "max": np.maximum, "sign": np.sign, "round": np.round}
+_FUNCTIONS: dict[str, Callable[..., np.ndarray]] = {
+    "abs": np.abs, "sqrt": np.sqrt, "sin": np.sin, "cos": np.cos, "tan": np.tan, "exp": np.exp, "log": np.log,
+    "min": np.minimum, "max": np.maximum, "sign": np.sign, "round": np.round}
 _CONSTANTS = {"pi": math.pi, "e": math.e}
 _BINARY = {ast.Add: np.add, ast.Sub: np.subtract, ast.Mult: np.multiply, ast.Div: np.divide,
            ast.Pow: np.power, ast.Mod: np.mod}
@@ -161,6 +162,7 @@ def evaluate_expression(text: str, variables: dict[str, str], lookup: Lookup) ->
 
 def _eval(node: ast.AST, values: dict[str, np.ndarray], shape):
     if isinstance(node, ast.Constant):
+        assert isinstance(node.value, int | float)  # parse_expression lets only numbers through
         return float(node.value)
     if isinstance(node, ast.Name):
         if node.id in values:
@@ -192,6 +194,7 @@ def _eval(node: ast.AST, values: dict[str, np.ndarray], shape):
             return _BITS[op](ai, bi).astype(float)
         raise DerivedError(f"expression: operator {op.__name__} is not allowed")
     if isinstance(node, ast.Call):
+        assert isinstance(node.func, ast.Name)  # parse_expression lets only named functions through
         args = [_eval(a, values, shape) for a in node.args]
         try:
             return _FUNCTIONS[node.func.id](*args)

@@ -6,6 +6,8 @@ import csv
 import io
 from pathlib import Path
 
+import numpy as np
+
 from motiontool.fileio import atomic_write_text
 from motiontool.scope.curves import OTHER_CURVES, Curve, Scope
 
@@ -22,7 +24,7 @@ def export_csv_text(scope: Scope) -> str:
     if others:
         blocks.append((OTHER_CURVES, None))
         blocks += [(c.name, c) for c in others]
-    data = []
+    data: list[tuple[np.ndarray, np.ndarray] | None] = []
     for _, curve in blocks:
         if curve is None:
             data.append(None)

@@ -99,12 +99,15 @@ class Capture:
             if self._trigger_at is None and self._t.size > tr.pre + 1:
                 cut = self._t.size - tr.pre - 1
                 self._t, self._v = self._t[cut:], self._v[cut:]
-        if self.state == "POST_TRIG" and self._t.size - self._trigger_at >= tr.post:
-            self.state = "DONE"
+        if self.state == "POST_TRIG":
+            assert self._trigger_at is not None  # set together with POST_TRIG
+            if self._t.size - self._trigger_at >= tr.post:
+                self.state = "DONE"
 
     def result(self) -> tuple[np.ndarray, np.ndarray]:
         if not self.done:
             raise RuntimeError(f"capture not complete (state {self.state})")
         i = self._trigger_at
+        assert i is not None  # DONE comes only after POST_TRIG
         lo = max(0, i - self.trigger.pre)
         return self._t[lo:i + self.trigger.post], self._v[lo:i + self.trigger.post]

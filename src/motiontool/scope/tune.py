@@ -113,6 +113,7 @@ class Tune:
         result = compile_source(cfg.program(), "tune.m")
         if not result.ok:  # the built-in program always compiles; a failure is a bug worth naming
             raise RuntimeError("tune program: " + "; ".join(d.format() for d in result.diagnostics))
+        assert result.image is not None  # compile_source leaves it None only with an error
         if self.link.status().program_state == "running":
             raise ValueError("the controller is executing a program: stop it before a test move")
         self._start_cpos = float(self.link.read_signals(["CPOS"])[0])

@@ -11,6 +11,7 @@ import json
 import zlib
 from dataclasses import asdict, fields
 from pathlib import Path
+from typing import NoReturn
 
 import numpy as np
 
@@ -170,7 +171,7 @@ class _Reader:
         self.version = VERSION
         self.samples = 0  # capacities of the curves read so far
 
-    def fail(self, where: str, message: str):
+    def fail(self, where: str, message: str) -> NoReturn:
         raise ZboError(f"{self.name}: {where}: {message}" if where else f"{self.name}: {message}")
 
     def dict(self, v, where) -> dict:
