@@ -275,8 +275,8 @@ class Case:
 
 
 CASES = {
-    "Select Controller": Case(select_controller, "the interface's scan, opening and identify on the GUI thread"),
-    "connect (Esc)": Case(connect_with_esc, "Connection.select opens and identifies on the GUI thread"),
+    "Select Controller": Case(select_controller),
+    "connect (Esc)": Case(connect_with_esc),
     "Execute": Case(execute, "Development.execute's status, break, writes, download and start"),
     "Download all": Case(download_all, "DownloadDialog.process on the GUI thread"),
     "Programs": Case(programs, "ProgramsDialog lists the programs on the GUI thread"),

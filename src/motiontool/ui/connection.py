@@ -16,6 +16,7 @@ from __future__ import annotations
 from PySide6.QtWidgets import QToolButton
 
 from motiontool.comms.protocol import LinkError
+from motiontool.ui.link_jobs import waiting
 
 
 class Connection:
@@ -59,10 +60,17 @@ class Connection:
         """Connect this window to a controller (the default interface when none is named); the controller it
         leaves keeps running its program; a controller another window holds moves here."""
         key = interface or self.registry.default.key
+
+        def open_and_identify():
+            try:
+                link = self.registry.link(controller_id, interface=key)
+                return link, link.identify()
+            except OSError as exc:   # a port that cannot be opened: said as it is, not as a failed request
+                raise LinkError(str(exc)) from exc
+
         try:
-            link = self.registry.link(controller_id, interface=key)
-            ident = link.identify()
-        except (LinkError, ValueError, OSError) as exc:
+            link, ident = waiting(self.w, f"Connecting to controller {controller_id} …", open_and_identify)
+        except (LinkError, ValueError) as exc:
             self.w.messages.ide(f"Connection to controller {controller_id} failed: {exc}")
             return False
         holder = self.registry.owners.get((key, controller_id))

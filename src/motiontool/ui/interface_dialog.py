@@ -28,6 +28,7 @@ from PySide6.QtWidgets import (
 
 from motiontool.comms.protocol import LinkError
 from motiontool.ui.controllers import APC_SIM, BAUDS, SIMULATED_IDS, ControllerRegistry, InterfaceConfig
+from motiontool.ui.link_jobs import waiting
 
 KINDS = {"sim": "Simulator (embedded MCO 305)", "fc": "FC protocol (RS-485 / USB)",
          "canopen": "CANopen (slcan, SocketCAN, PCAN, Kvaser, IXXAT … adapter)"}
@@ -198,8 +199,8 @@ class SelectControllerDialog(QDialog):
         layout.addWidget(self.message)
         layout.addWidget(self.buttons)
         self.resize(520, 360)
-        if not registry.interfaces:
-            registry.open_interface()
+        if not registry.interfaces:   # a bus is scanned: the window paints and says so meanwhile
+            waiting(parent, f"Scanning {registry.default.description} …", registry.open_interface)
         self.fill()
 
     def fill(self) -> None:
@@ -220,8 +221,7 @@ class SelectControllerDialog(QDialog):
         if first is not None:
             self.tree.setCurrentItem(first)
 
-    @staticmethod
-    def controller_name(iface, cid: int) -> str:
+    def controller_name(self, iface, cid: int) -> str:
         """The name given with Parameters ▸ Name (DG 2872: "displayed in various dialogs … to more easily
         differentiate between multiple controllers"), from a controller already connected; one not connected
         is not opened just for its name (a bus would be asked once per controller)."""
@@ -229,15 +229,17 @@ class SelectControllerDialog(QDialog):
         if link is None or not getattr(link, "alive", True):
             return ""
         try:
-            return link.identify().name
-        except (LinkError, OSError):
+            return waiting(self.parent(), f"Controller {cid}: asking its name …", lambda: link.identify().name)
+        except (LinkError, ValueError):
             return ""
 
     def open_selected_interface(self) -> None:
         """Open Interface (DG 2540): scan the chosen interface; the default interface stays as it is."""
         config = self.configs[self.interface.currentData()]
         try:
-            iface = self.registry.open_interface(config=config)
+            self.message.setText(f"{config.description}: scanning {config.first}..{config.last} …")
+            iface = waiting(self.parent(), f"Scanning {config.description} …",
+                            lambda: self.registry.open_interface(config=config))
         except Exception as exc:  # noqa: BLE001 - a port that cannot be opened is reported in the dialog
             self.message.setText(f"{config.description}: {exc}")
             return

@@ -4,7 +4,8 @@ one exchange takes a quarter of a second or more, and the window must not stand 
 `LinkJobs.run(work, done)` calls `work()` on the jobs' own thread, one job after another in the order asked, and
 hands its result (or the LinkError/ValueError it raised) to `done` in the GUI thread. `wait_off_gui(work)` is for
 a command that needs the answer before it goes on (Execute's array check): the request runs on a thread while
-the GUI thread keeps painting (user input waits, so the command is not started twice meanwhile).
+the GUI thread keeps painting (user input waits, so the command is not started twice meanwhile); `waiting(window,
+text, work)` is wait_off_gui that says so: the text in the window's status bar and a busy cursor until the answer.
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ from collections.abc import Callable
 from typing import Any
 
 from PySide6.QtCore import QEventLoop, QObject, Qt, Signal, Slot
+from PySide6.QtWidgets import QApplication
 
 from motiontool.comms.protocol import LinkError
 
@@ -90,3 +92,18 @@ def wait_off_gui(work: Callable[[], Any]) -> Any:
     if isinstance(box[0], Exception):
         raise box[0]
     return box[0]
+
+
+def waiting(window, text: str, work: Callable[[], Any]) -> Any:
+    """wait_off_gui while `window` (a main window, or a widget inside one) shows that it waits for the controller."""
+    main = window.window() if hasattr(window, "window") else window
+    bar = main.statusBar() if hasattr(main, "statusBar") else None
+    if bar is not None:
+        bar.showMessage(text)
+    QApplication.setOverrideCursor(Qt.CursorShape.BusyCursor)
+    try:
+        return wait_off_gui(work)
+    finally:
+        QApplication.restoreOverrideCursor()
+        if bar is not None and bar.currentMessage() == text:   # a later message of the command stays
+            bar.clearMessage()
