@@ -1,6 +1,6 @@
 """Property-based fuzzing of the APOSS compiler: ANY input gives diagnostics, never an exception.
 
-The generators live in benchmarks/fuzz_compiler.py as plain functions of a random.Random-like object, shared with
+The generators live in benchmarks/compiler_fuzz as plain functions of a random.Random-like object, shared with
 the 100 000-case benchmark. Here hypothesis drives them: it draws bytes, ByteRandom turns them into the generator's
 choices, so a failure is shrunk (fewer and simpler choices) and replayed deterministically. The report shows the
 generated source of a failing example ("source: ...").
@@ -39,8 +39,11 @@ _KNOWN_SITES = {entry[:4] for entry in KNOWN_CRASHES}
 
 
 def _load_generators():
-    path = Path(__file__).resolve().parents[2] / "benchmarks" / "fuzz_compiler.py"
-    spec = importlib.util.spec_from_file_location("motiontool_fuzz_generators", path)
+    """The package benchmarks/compiler_fuzz, loaded from its path (benchmarks/ is not on sys.path)."""
+    if "compiler_fuzz" in sys.modules:  # benchmarks/fuzz_files.py (test_image_fuzz) imports it by name
+        return sys.modules["compiler_fuzz"]
+    path = Path(__file__).resolve().parents[2] / "benchmarks" / "compiler_fuzz" / "__init__.py"
+    spec = importlib.util.spec_from_file_location("compiler_fuzz", path, submodule_search_locations=[str(path.parent)])
     module = importlib.util.module_from_spec(spec)
     sys.modules[spec.name] = module
     spec.loader.exec_module(module)
