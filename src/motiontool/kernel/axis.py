@@ -12,12 +12,18 @@ from __future__ import annotations
 
 import math
 from collections import deque
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
+from motiontool.kernel.cam import CamMotion
 from motiontool.kernel.errors import ControllerError
 from motiontool.kernel.plant import Plant, PlantConfig
 from motiontool.kernel.profile import Limits, ProfileGenerator
 from motiontool.kernel.units import Scaling
+
+if TYPE_CHECKING:
+    from motiontool.kernel.homing import Homing
+    from motiontool.kernel.sync import SyncMotion
 
 IDLE, POSITIONING, SPEED, STOPPING, HOMING, SYNC = "idle", "positioning", "speed", "stopping", "homing", "sync"
 CAM = "cam"  # SYNCC: axis.sync is a cam.CamMotion
@@ -40,6 +46,14 @@ class Gains:
     poserrtime: int = 0
     regwmax: int = 0
     regwmin: int = 0
+    # derived in __post_init__: not arguments, not compared (a field without a default: no class attribute)
+    kprop_1000: float = field(init=False, repr=False, compare=False)
+    kder_1000: float = field(init=False, repr=False, compare=False)
+    bandwidth_1000: float = field(init=False, repr=False, compare=False)
+    ffvel_1000: float = field(init=False, repr=False, compare=False)
+    ffacc_1000: float = field(init=False, repr=False, compare=False)
+    window: bool = field(init=False, repr=False, compare=False)
+    integrating: bool = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         # the per-mille factors of the position law (kprop_1000 = KPROP/1000 …), divided once instead of every
@@ -76,9 +90,9 @@ class Axis:
         self.raw_history: deque[int] = deque([self.apos], maxlen=21)  # AVEL measures over 20 ms (CR 295-296)
         self.target_window: tuple[int, int, int] = (0, 1, 0)  # TESTTIM, TESTVAL, TESTWIN
         self._window_history: list[int] = []
-        self.homing = None                # homing.Homing while HOME / INDEX runs
+        self.homing: Homing | None = None  # while HOME / INDEX runs
         self.limit_offset = 0             # DEFORIGIN shifts the software limits with the origin (DG 10158)
-        self.sync = None                  # sync.SyncMotion while SYNCV / SYNCP runs (mode "sync")
+        self.sync: SyncMotion | CamMotion | None = None  # while SYNCV / SYNCP (mode "sync") or SYNCC ("cam") runs
 
     # --- readouts (axis frame, qc) ------------------------------------------------------------------
     @property
@@ -111,11 +125,14 @@ class Axis:
             mode = self.mode
             if mode == CAM:
                 sync = self.sync
+                assert isinstance(sync, CamMotion)  # synchronise() sets the mode and the motion together
                 sync.step(pg)
                 if sync.finish is not None:  # disengaged: position to the slave stop position
                     self.move_to(*sync.finish)
             elif mode == SYNC:
-                self.sync.step(pg)
+                sync = self.sync
+                assert sync is not None  # synchronise() sets the mode and the motion together
+                sync.step(pg)
             elif pg.mode != "idle":
                 pg.step()
             if self.homing is not None:
@@ -207,7 +224,7 @@ class Axis:
         self.mode = SPEED
         self.last_motion = ("speed", velocity, limits)
 
-    def synchronise(self, motion, mode: str = SYNC) -> None:
+    def synchronise(self, motion: SyncMotion | CamMotion, mode: str = SYNC) -> None:
         """SYNCV / SYNCP: from now on the sync motion drives the commanded position (RAMPTYPE does not
         apply, DG 8987)."""
         self._start()
@@ -271,6 +288,7 @@ class Axis:
         self.apos -= by_qc
         if self.mode in (SYNC, CAM):  # the sync relation moves with the origin
             self.profile.position -= by_qc
+            assert self.sync is not None  # synchronise() sets the mode and the motion together
             self.sync.shift(-by_qc)
         elif self.profile.done:
             self.profile.hold(self.profile.position - by_qc)

@@ -8,10 +8,12 @@ with `@command`; kernel/commands.py imports every command module, so loading it 
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from motiontool.kernel.errors import ControllerError
 from motiontool.kernel.vm import Wait
 
-COMMANDS = {}
+COMMANDS: dict[str, Callable[..., object]] = {}  # name → fn(ctl, vm, args): a value, a Wait or None
 
 
 def command(*names):

@@ -82,10 +82,13 @@ class ParameterStore:
     def save(self, which: Callable[[int], bool] | Iterable[int]) -> None:
         """SAVE AXPARS / GLBPARS / USRPARS: keep the current values of the parameters `which` selects past the
         program — a predicate on the parameter index, or parameter groups such as (19, 32, 33)."""
-        groups = None if callable(which) else frozenset(which)
-        for index, value in self.values.items():
-            if (index // 100 in groups) if groups is not None else which(index):
-                self.saved[index] = value
+        if callable(which):
+            chosen = [index for index in self.values if which(index)]
+        else:
+            groups = frozenset(which)
+            chosen = [index for index in self.values if index // 100 in groups]
+        for index in chosen:
+            self.saved[index] = self.values[index]
 
     def restore(self) -> None:
         """Program end: SET values that were not saved go back."""

@@ -12,6 +12,7 @@ The algorithm, the S-ramp design choice and the manual references are in ``docs/
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 __all__ = ["Limits", "ProfileGenerator"]
@@ -24,6 +25,8 @@ _ACC = 0  # constant acceleration `value` (ramp type 0)
 _SIN = 1  # sin² acceleration bump of peak `value` over the whole duration (ramp type 1)
 _JERK = 2  # constant jerk `value`, the acceleration continues (ramp type 2)
 _CRUISE = 3  # constant velocity `value`, acceleration 0
+# a planned segment (ProfileGenerator._load): t1, t0, p0, v0, a0, j, value, amp, w2
+_Rec = tuple[float, float, float, float, float, float, float, float, float]
 
 
 @dataclass(frozen=True)
@@ -195,6 +198,7 @@ class _JerkPlanner:
             m = 1.0 if v > 0.0 or (v == 0.0 and (a > 0.0 or (a == 0.0 and v1 >= 0.0))) else -1.0
             rv, ra, rv1 = m * v, m * a, m * v1
             seg: list = []
+            done = False
             if rv1 >= 0.0:
                 if ra < 0.0 and 2.0 * j4 * rv < ra * ra:
                     # even the gentlest braking passes v = 0 [DG 1922-1924]: ramp down with J4 through zero
@@ -203,7 +207,7 @@ class _JerkPlanner:
                     v, a = 0.0, -m * r
                 else:
                     self._region(rv, ra, rv1, 0.0, seg)
-                    v = None  # done
+                    done = True
             else:
                 # reversal: reach v = 0 with a deceleration z that continues as acceleration [DG 1898, 1940-1942]
                 z = min(self.acc, self.dec, math.sqrt(2.0 * j2 * -rv1))
@@ -215,7 +219,7 @@ class _JerkPlanner:
                 self._region(rv, ra, 0.0, -z, seg)
                 v, a = 0.0, -m * z
             out.extend((d, _JERK, m * j) for d, j in seg)
-            if v is None:
+            if done:
                 return
         raise RuntimeError("limited-jerk planner did not converge")  # pragma: no cover
 
@@ -257,6 +261,33 @@ class ProfileGenerator:
         "_clamp_from", "_clamp", "_dir", "_tgt",
         "_s_t0", "_s_t1", "_s_p", "_s_v", "_s_a", "_s_j", "_s_amp", "_s_w2", "_off", "_last_p",
     )  # fmt: skip
+    position: float
+    velocity: float
+    acceleration: float
+    mode: str
+    target: float | None
+    _segs: Sequence[_Rec]
+    _idx: int
+    _t: float
+    _static: bool
+    _end_t: float
+    _reach_t: float
+    _end_p: float
+    _clamp_from: int
+    _clamp: int
+    _dir: float
+    _tgt: float
+    # the segment being sampled (_enter)
+    _s_t0: float
+    _s_t1: float
+    _s_p: float
+    _s_v: float
+    _s_a: float
+    _s_j: float
+    _s_amp: float
+    _s_w2: float
+    _off: float
+    _last_p: float
 
     def __init__(self, position: float = 0.0) -> None:
         self._limits: Limits | None = None
@@ -460,7 +491,7 @@ class ProfileGenerator:
         """
         t = 0.0
         p, v, a = self.position, self.velocity, self.acceleration
-        recs = []
+        recs: list[_Rec] = []
         for d, kind, x in raw:
             if not d > 0.0:
                 continue
@@ -545,7 +576,11 @@ class ProfileGenerator:
         self._off += d
         self._s_p += d
         self._end_p += d
-        self._tgt = self.target if self.mode == "position" else self._tgt + d
+        if self.mode == "position":
+            assert self.target is not None  # move_to sets the mode and the target together
+            self._tgt = self.target
+        else:
+            self._tgt = self._tgt + d
 
     def _finish(self) -> None:
         self.position = self._last_p = self._tgt if self.mode == "position" else self._end_p

@@ -5,7 +5,7 @@ qc = quad counts; velocities in qc per ms, accelerations in qc per ms², jerk in
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 
 @dataclass(frozen=True)
@@ -16,6 +16,9 @@ class Scaling:
     encoder_ppr: int = 1024  # 32-01
     velres: int = 100      # 32-83
     rampmin_ms: int = 1000  # 32-81 (raw, ms)
+    # derived in __post_init__: not arguments, not compared (a field without a default: no class attribute)
+    vmax: float = field(init=False, repr=False, compare=False)
+    amax: float = field(init=False, repr=False, compare=False)
 
     @classmethod
     def from_params(cls, p) -> Scaling:

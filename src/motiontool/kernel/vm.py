@@ -73,6 +73,7 @@ class Host(Protocol):
     def read_pseudo(self, which: int, index: int) -> int: ...
     def statement_stop(self, vm: VM, line_index: int) -> bool: ...
     def write_pseudo(self, which: int, index: int, value: int) -> None: ...
+    def interrupt_returned(self, vm: VM, kind: str) -> None: ...
 
 
 class _OutputRoom(Wait):
@@ -432,7 +433,7 @@ class VM:
             raise ControllerError(156, str(exc)) from None
 
 
-_BINOPS = OPERATOR_OF  # BinOp code → operator name of semantics.py
+_BINOPS = {int(code): name for code, name in OPERATOR_OF.items()}  # BinOp code → operator name of semantics.py
 
 
 def _size(dims: list[int]) -> int:
