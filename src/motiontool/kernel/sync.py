@@ -24,8 +24,12 @@ SYNCFFVEL leads the SYNCP/SYNCM command by VCMD · SYNCFFVEL/1000 (a velocity-pr
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from motiontool.kernel.errors import ControllerError
+
+if TYPE_CHECKING:
+    from motiontool.kernel.markers import MarkerSync
 
 SYNCSTAT_READY, SYNCSTAT_FAULT, SYNCSTAT_ACCURACY = 1, 2, 4
 
@@ -148,7 +152,9 @@ class SyncMotion:
         self.gear = gear
         self.vel, self.acc, self.dec = limits.vel, limits.acc, limits.dec
         self.offset = offset          # SYNCPOSOFFS (master qc), read every tick
-        self.shift = shift            # Σ MOVESYNCORIGIN of this synchronisation (master qc)
+        # Σ MOVESYNCORIGIN of this synchronisation (master qc); not named `shift`, which would hide the method
+        # shift() that DEFORIGIN calls
+        self.origin_shift = shift
         self._offset = offset() + shift
         self.offset_applied = self._offset  # master qc of offset already in the target
         self._raw = master.raw
@@ -169,7 +175,7 @@ class SyncMotion:
         self.slave_filter = OffsetFilter()   # slave qc (marker corrections)
         self.slave_shift = 0
         self.vcmd = master.velocity * gear.ratio  # filtered SYNCV command velocity
-        self.markers = None
+        self.markers: MarkerSync | None = None
         self.locked = False
         self.target = base_slave + gear.out
 
@@ -187,7 +193,7 @@ class SyncMotion:
             pg.position += v
         else:
             pg.position -= self._lead  # the lead is added to the output only; the sync runs without it
-            offset = self.offset() + self.shift
+            offset = self.offset() + self.origin_shift
             if offset != self._offset:  # realised within the limits / by the offset filter, not as a jump
                 delta = offset - self._offset
                 self.offset_filter.add(delta, self._duration(abs(delta), abs(delta * ratio)))
@@ -199,6 +205,7 @@ class SyncMotion:
             self.slave_shift += self.slave_filter.step()
             if self.offset_filter.jumped or self.slave_filter.jumped:
                 self.locked = False
+            t: float  # the target; a float once filtered
             t = self.target = self.base_slave + self.gear.advance(d_input) + self.slave_shift
             vt = (m.velocity + self.offset_filter.velocity) * ratio + self.slave_filter.velocity
             if self.pfilter_ms:  # negative SYNCVFTIME: the slave follows the filtered command (DG 9800-9811)

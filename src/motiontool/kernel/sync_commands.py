@@ -91,7 +91,7 @@ def movesyncorigin(ctl, vm, args):
     data.sync_shift += args[0]
     running = _position_sync(ctl)
     if running is not None:
-        running.shift += args[0]
+        running.origin_shift += args[0]
     else:
         data.next_sync_shift += args[0]
 
