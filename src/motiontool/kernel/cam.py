@@ -27,8 +27,12 @@ from __future__ import annotations
 
 import bisect
 import math
+from typing import TYPE_CHECKING
 
 from motiontool.kernel.errors import ControllerError
+
+if TYPE_CHECKING:
+    from motiontool.kernel import cam_markers, profile
 
 # camcurve (numpy/scipy, ~0.8 s to import) is imported on the first SETCURVE, not with the kernel.
 
@@ -238,7 +242,7 @@ class CamMotion:
     def __init__(self, cam: CamState, cycles: int, limits, accuracy: int, slave_qc: float, temp_origin: int,
                  qc_per_uu: float, sync_origin: tuple[int, int] | None = None):
         self.cam = cam
-        self.markers = None  # cam_markers.CamMarkers: SYNCCMM/SYNCCMS marker correction, SYNCMSTART 2000 start
+        self.markers: cam_markers.CamMarkers | None = None  # SYNCCMM/SYNCCMS marker correction, SYNCMSTART 2000 start
         self.cycles = max(0, cycles)
         self.cycles_done = 0
         self.limits = limits
@@ -282,7 +286,7 @@ class CamMotion:
         self.stop_uu = 0.0                                     # SYNCCSTOP's slave stop position (UU)
         self.pending_mcpos: float | None = None
         self.pending_cam: CamState | None = None
-        self.finish: tuple[float, object] | None = None       # (target qc, limits): the axis positions there
+        self.finish: tuple[float, profile.Limits] | None = None  # (target qc, limits): the axis positions there
         self.target = self._curve_qc(m)
         self._last_t = self._prev_t = self.target
         self._relation = (cam.data.mc_ref, cam.data.sync_shift)
@@ -386,16 +390,16 @@ class CamMotion:
             t = self.base + (y + cycle * curve.slave_length) * self.k
         elif state in (WAIT_START, WAIT_STOP):
             t = self.p0 if state == WAIT_START else self._curve_qc(m)
+            assert self.pair is not None  # start() and stop() set it with these states
             start, stop = self.pair
             span = (stop - start) % length
             # DG 4040-4046: forward the pair runs Start → Stop; backward it begins at Stop and ends at Start
             if m >= self._last_m:
                 direction, crossing = 1, self._crossed(start, m)
-                x_a = crossing
             else:
                 direction, crossing = -1, self._crossed(stop, m)
-                x_a = None if crossing is None else crossing - span
             if crossing is not None:
+                x_a = crossing if direction > 0 else crossing - span
                 if state == WAIT_START:
                     self._place_curve(crossing)
                     if span == 0:

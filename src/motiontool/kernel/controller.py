@@ -16,6 +16,7 @@ from motiontool.kernel import commands, objdict
 from motiontool.kernel import io as iomod
 from motiontool.kernel.arrays import ArrayMemory
 from motiontool.kernel.axis import Axis, Gains
+from motiontool.kernel.cam import CamMotion
 from motiontool.kernel.canport import CanPort
 from motiontool.kernel.command_base import motion_limits
 from motiontool.kernel.errors import AXIS_ERRORS, ControllerError, error_text
@@ -25,6 +26,7 @@ from motiontool.kernel.master import Master, MasterConfig
 from motiontool.kernel.parameters import ParameterStore, is_axis_parameter
 from motiontool.kernel.plant import PlantConfig
 from motiontool.kernel.recorder import Recorder
+from motiontool.kernel.sync import SyncMotion
 from motiontool.kernel.sysvars import read_sysvar
 from motiontool.kernel.tick import controller_tick
 from motiontool.kernel.units import Scaling
@@ -136,7 +138,9 @@ class Controller:
             if self.homed and is_axis_parameter(index) and value != self._homed_with.get(index, value):
                 self.homed = False
             if index in (3310, 3311) and self.axis.mode == "sync":  # SYNCFACTM / SYNCFACTS online (K21)
-                self.axis.sync.regear(self.params["SYNCFACTS"], self.params["SYNCFACTM"])
+                sync = self.axis.sync
+                assert isinstance(sync, SyncMotion)  # Axis.synchronise() sets the mode and the motion together
+                sync.regear(self.params["SYNCFACTS"], self.params["SYNCFACTM"])
         if source != "program":  # CR 2779-2810: ON PARAM fires for LCP/SDO/PDO writes, not program writes
             self.interrupts.fire_param(index)
 
@@ -300,6 +304,7 @@ class Controller:
         with DEC: no program keeps them going (DG 1488: "Empty main loop so that program will not be terminated")."""
         axis = self.axis
         if axis.mode == "cam":
+            assert isinstance(axis.sync, CamMotion)  # Axis.synchronise() sets the mode and the motion together
             if axis.sync.program_ended():
                 self.message("the program ended in CAM mode: the slave disengages to the Slave Stop Position")
         elif axis.mode in ("sync", "speed"):
@@ -527,6 +532,7 @@ class Controller:
 
     def _homing_finished(self) -> None:
         homing = self.axis.homing
+        assert homing is not None  # called when the running homing has finished
         self.axis.homing = None
         self.axis.mode = "idle"
         if not homing.index_only:

@@ -44,7 +44,7 @@ class Interrupts:
         self._order = 0
 
     def reset(self) -> None:
-        self.__init__()
+        type(self).__init__(self)
 
     # --- definition (ON ... statements) ------------------------------------------------------------------
     def define(self, kind: str, sign: int, sub: int, operands: list[int], now: int, has_value: bool,
@@ -143,6 +143,7 @@ class Interrupts:
                 s.last = value
                 if fired and s.sub < 0:  # SETOUT in the background, < 1 ms (CR 2985-3016)
                     out = s.setout
+                    assert out is not None  # sub -1 only with SETOUT (aposs/codegen.py; verify.py refuses others)
                     level = 1 if out > 0 else 0
                     if s.toin is not None:
                         level = read_input(abs(s.toin))

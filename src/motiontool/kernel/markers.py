@@ -132,10 +132,10 @@ class MarkerChannel:
         elif marker_type == 2 or marker_type == 3:
             want_rising = marker_type == 2
             level = io.inputs.get(self.input, 0)
-            last, self._last_level = self._last_level, level
+            last_level, self._last_level = self._last_level, level
             if sensor is not None:
                 found = [(b, _fraction(p0, p1, b)) for b, rising in sensor_edges if rising == want_rising]
-            elif level != last and bool(level) == want_rising:
+            elif level != last_level and bool(level) == want_rising:
                 found = [(p1, 1.0)]
             else:
                 return _NONE
@@ -283,14 +283,14 @@ class _Side:
         self.ref: float | None = None   # last accepted marker, or where the missing one was expected
         self.count = 0
 
-    def accept(self, pos: float, distance: int, window: int) -> bool:
+    def accept(self, pos: float, distance: float, window: int) -> bool:
         if self.ref is not None and window > 0 and abs(abs(pos - self.ref) - distance) > window:
             return False  # outside the tolerance window (also a second marker inside the same window)
         self.ref = pos
         self.count += 1
         return True
 
-    def missing(self, pos: float, direction: float, distance: int, window: int) -> bool:
+    def missing(self, pos: float, direction: float, distance: float, window: int) -> bool:
         """True once per expected marker that did not come inside its window."""
         if self.ref is None or window <= 0 or abs(pos - self.ref) <= distance + window:
             return False
@@ -327,7 +327,7 @@ class MarkerSync:
 
     def restart(self) -> None:
         """SYNCMARKERSTART: forget the markers seen and start the marker handling again (DG 7242)."""
-        self.__init__(self.ctl, self.motion, self.start_param)
+        type(self).__init__(self, self.ctl, self.motion, self.start_param)
 
     def shift(self, delta: int) -> None:
         """The slave origin moved: stored slave positions are raw counts and need nothing."""
