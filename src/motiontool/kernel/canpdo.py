@@ -145,7 +145,8 @@ class PdoEngine:
         entries[rank] = MapEntry(target, bits, dummy)
         if sum(e.bits for e in entries.values()) > 8 * size:
             raise ControllerError(183, f"PDO {number} holds {size} bytes; the mapping needs more")
-        if objdict.split_sysvar(target) is not None and objdict.split_sysvar(target)[0] not in objdict.OBJECTS:
+        where = objdict.split_sysvar(target)
+        if where is not None and where[0] not in objdict.OBJECTS:
             raise ControllerError(183, f"SYSVAR[0x{target:08X}] is no object of the dictionary")
         pdo.entries = entries
         pdo.count = max(pdo.count, rank)
@@ -328,7 +329,7 @@ def _get_bits(array: bytes, offset: int, bits: int, signed: bool) -> int:
 
 
 # --- the communication and mapping objects (kernel/objdict.py) --------------------------------------------------
-def accessor(tx: bool, number: int, what: str, rank: int = 0):
+def accessor(tx: bool, number: int, what: str, rank: int = 0) -> tuple[objdict.Getter, objdict.Setter]:
     """(get, put) of one sub-object of 0x1400/0x1600/0x1800/0x1A00 for PDO `number`."""
     def pdo(c) -> Pdo:
         return (c.can.pdo.tx if tx else c.can.pdo.rx)[number]

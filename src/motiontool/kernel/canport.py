@@ -244,6 +244,7 @@ class CanPort:
         if not self.global_new:
             return None
         self.global_new = False
+        assert self.global_message is not None  # set with global_new
         return self._unpack(self.global_message)
 
     def _unpack(self, data: bytes) -> int:

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 from motiontool.kernel import objdict
 from motiontool.kernel.canbus import CanFrame
 from motiontool.kernel.errors import ControllerError
-from motiontool.kernel.vm import Wait
+from motiontool.kernel.vm import ArrayRef, Wait
 
 SDO_TIMEOUT_MS = 500
 MAX_CHANNELS = 5               # "Up to 5 transfers to different ids in parallel" (CR 3849-3852)
@@ -44,7 +44,7 @@ class Transfer:
     index: int
     sub: int
     value: int = 0
-    array: object | None = None        # the DIM array of a segmented read
+    array: ArrayRef | None = None      # the DIM array of a segmented read
     waiting: bool = True
     deadline: int = 0
     state: int = BUSY                  # SDOSTATE code once finished
@@ -158,6 +158,7 @@ class SdoClient:
             self._finish(transfer, VALUE, _long(int.from_bytes(data[:4], "little", signed=len(data) >= 4)))
             return
         array = transfer.array
+        assert array is not None  # SDOREADSEG(P) ("seg"/"segp") give one; "write" does not come here
         per_element = 4 if transfer.kind == "segp" else 1
         needed = -(-len(data) // per_element)
         if needed > len(array.data):
@@ -246,7 +247,7 @@ class SdoServer:
                 raise objdict.ObjectError(objdict.ABORT_COMMAND, "block transfers are not served by the kernel")
         except objdict.ObjectError as exc:
             self._upload = self._download = None
-            where = (index, sub) if ccs in (1, 2) else self._where
+            where: tuple[int, int] = (index, sub) if ccs in (1, 2) else self._where
             self.port.send(abort_frame(node, *where, exc.code))
 
     def _reply(self, data: bytes) -> None:

@@ -2,7 +2,7 @@
 
 One table serves every way in: SYSVAR[0x01000000 + (index << 8) + sub] in programs (CR 2039), the SDO servers
 (the kernel's own, kernel/cansdo.py, and the virtual drive's python-canopen LocalNodes), PDO mapping (LINKPDO,
-LINKSDO, 0x1600/0x1A00) and the EDS the drive ships (comms/canopen/eds.py writes it from `OBJECTS`).
+LINKSDO, 0x1600/0x1A00) and the EDS the drive ships (controller/canopen/eds.py writes it from `OBJECTS`).
 docs/protocols/canopen.md lists the objects; the manual's fixed points are 0x1201 (SDO2, DG 7317-7349), 0x1400 /
 0x1600 / 0x1800 / 0x1A00 (PDOs, CR 3313-3388), 0x2100 (arrays, first element at sub 5, CR 2042-2044, 2793-2797),
 0x2201 (user parameters, CR 1986), 0x2202 (system process data, CR 1988-1990, 2085-2088), 0x2300 sub 2 (VELMAX,
@@ -176,7 +176,7 @@ def _var(index: int, name: str, datatype: str, access: str, get: Getter | None =
 
 def record(index: int, name: str, subs: list[Entry], kind: str = "RECORD") -> None:
     top = max(e.sub for e in subs)
-    count = Entry(index, 0, "Highest sub-index supported", "UNSIGNED8", "const", lambda c, n=top: n, default=top,
+    count = Entry(index, 0, "Highest sub-index supported", "UNSIGNED8", "const", lambda c: top, default=top,
                   mappable=False)
     OBJECTS[index] = Obj(index, name, kind, {0: count, **{e.sub: e for e in subs}})
 
@@ -332,10 +332,14 @@ def _parameter_objects() -> None:
         number = p.index
         datatype = PARAMETER_TYPES.get(p.data_type, "INTEGER32")
         read_only = p.read_only or number // 100 == 34
+        get, put = _parameter_access(number)
         _var(PARAMETER_BASE + number, f"{p.number} {p.name or p.description}"[:60], datatype,
-             "ro" if read_only else "rw", lambda c, n=number: c.params.get(n),
-             None if read_only else (lambda c, v, s, n=number: c.params.set(n, int(v), source=s)),
-             default=p.to_raw(p.default))
+             "ro" if read_only else "rw", get, None if read_only else put, default=p.to_raw(p.default))
+
+
+def _parameter_access(number: int) -> tuple[Getter, Setter]:
+    """(get, put) of parameter `number` (a function of its own: the lambdas keep this number, not the loop's last)."""
+    return (lambda c: c.params.get(number)), (lambda c, v, s: c.params.set(number, int(v), source=s))
 
 
 def _array_element(k: int) -> Callable[[int], Entry]:
@@ -423,9 +427,13 @@ def _manufacturer_objects() -> None:
     axis.append(Entry(0x2500, TIME_STAMP_SUB, "Time stamp (ms, low 16 bits)", "UNSIGNED16", "ro",
                       lambda c: c.time_ms & 0xFFFF))
     record(0x2500, "Axis 1 process data", axis)
-    record(0x2510, "Link signals", [Entry(0x2510, k, name, "INTEGER32", "ro",
-                                           lambda c, r=reader: round(r(c)))
+    record(0x2510, "Link signals", [Entry(0x2510, k, name, "INTEGER32", "ro", _rounded(reader))
                                      for k, (name, reader) in enumerate(SIGNALS.items(), start=1)])
+
+
+def _rounded(reader: Getter) -> Getter:
+    """`reader`'s value rounded (a function of its own: the lambda keeps this reader, not the loop's last)."""
+    return lambda c: round(reader(c))
 
 
 def _output_byte(c, n: int) -> int:
@@ -460,7 +468,7 @@ def _device_profile_objects() -> None:
         _var(index, name, datatype, "rw", *_memory(sysvar_index(index, 0)), default=0)
 
 
-# Signals of the link (comms/service.py streams them by name): 0x2510 sub 1.. in this order.
+# Signals of the link (controller/service.py streams them by name): 0x2510 sub 1.. in this order.
 SIGNALS: dict[str, Callable[[Any], float]] = {
     "APOS": lambda c: c.uu(c.axis.apos),
     "CPOS": lambda c: c.uu(c.axis.cpos),
