@@ -277,8 +277,8 @@ class Case:
 CASES = {
     "Select Controller": Case(select_controller),
     "connect (Esc)": Case(connect_with_esc),
-    "Execute": Case(execute, "Development.execute's status, break, writes, download and start"),
-    "Download all": Case(download_all, "DownloadDialog.process on the GUI thread"),
+    "Execute": Case(execute),
+    "Download all": Case(download_all),
     "Programs": Case(programs, "ProgramsDialog lists the programs on the GUI thread"),
     "Reset > Arrays": Case(reset_arrays, "controller_menu.reset on the GUI thread"),
     "Memory > Save RAM": Case(save_ram, "controller_menu.memory on the GUI thread"),

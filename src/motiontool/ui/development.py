@@ -18,7 +18,7 @@ from motiontool.fileio import atomic_write_bytes, write_error
 from motiontool.ui.compiler_settings import CompilerSettings
 from motiontool.ui.compiler_settings import check as compiler_checks
 from motiontool.ui.controllers import APC_SIM, InterfaceConfig
-from motiontool.ui.link_jobs import wait_off_gui
+from motiontool.ui.link_jobs import waiting
 
 DEFAULT_CONTROLLER = ("embedded", 1)
 MAX_NOTED_ERRORS = 1000  # a controller keeps its last 50; this bounds a window that runs for days
@@ -172,13 +172,14 @@ class Development:
         if debugger is not None and debugger.active:  # F5 runs the normal build: leave the debug session
             debugger.end()
         link = self.w.bridge.link
+        cid = self.w.bridge.controller_id
         try:
-            state = link.status().program_state
+            state = waiting(self.w, f"Controller {cid}: asking its state …", lambda: link.status().program_state)
             if state == "running":
                 if ask and QMessageBox.question(self.w, "Execute", "The controller is executing a program. "
                                                 "Stop it?") != QMessageBox.StandardButton.Yes:
                     return False
-                link.break_program()
+                waiting(self.w, f"Controller {cid}: stopping its program …", link.break_program)
             outcome = self.compile_current()
             if outcome is None:
                 return False
@@ -200,12 +201,17 @@ class Development:
             test = self._test_settings()   # the header's Test-settings/-inputs, when the user chose to apply them
             if test is None:
                 return False
-            for key, value in test.settings:
-                link.write_parameter(key, value)
-            link.download(image.to_bytes(), name=Path(image.name).name, stack_size=stack)
-            link.start(inputs=test.inputs)
-            self.ran[self.w.bridge.controller_id] = self.w.current_editor()
-            self.images[self.w.bridge.controller_id] = getattr(outcome.result, "image", None)
+
+            def send() -> None:
+                for key, value in test.settings:
+                    link.write_parameter(key, value)
+                link.download(image.to_bytes(), name=Path(image.name).name, stack_size=stack)
+
+            waiting(self.w, f"Controller {cid}: downloading {Path(image.name).name} …", send)
+            # before the start: its events (an error's DIM line, ui/pending_error.py) arrive while start waits
+            self.ran[cid] = self.w.current_editor()
+            self.images[cid] = getattr(outcome.result, "image", None)
+            waiting(self.w, f"Controller {cid}: starting …", lambda: link.start(inputs=test.inputs))
         except LinkError as exc:
             self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: {exc}")
             return False
@@ -235,7 +241,7 @@ class Development:
         offers Reset ▸ Arrays first (decision I20)."""
         if not image.dims:
             return True
-        arrays = wait_off_gui(lambda: link.list_arrays())
+        arrays = waiting(self.w, f"Controller {self.w.bridge.controller_id}: reading its arrays …", link.list_arrays)
         clash = dim_clash(arrays, [(v.name, v.dims) for v in image.dims])
         if clash is None or not ask:
             return True
@@ -250,7 +256,8 @@ class Development:
         chosen = box.clickedButton()
         box.deleteLater()
         if chosen is reset:
-            wait_off_gui(lambda: link.reset("arrays"))
+            waiting(self.w, f"Controller {self.w.bridge.controller_id}: deleting its arrays …",
+                    lambda: link.reset("arrays"))
             self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: arrays deleted (Reset ▸ Arrays)")
             return True
         return chosen is anyway
@@ -276,15 +283,17 @@ class Development:
         if not self.w.bridge.connected:
             self.connect_default()
             return
+        link = self.w.bridge.link
         try:
-            self.w.bridge.link.break_program()
+            waiting(self.w, f"Controller {self.w.bridge.controller_id}: stopping its program …", link.break_program)
         except LinkError as exc:
             self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: {exc}")
 
     def continue_program(self) -> None:
         if self.connect_default():
+            link = self.w.bridge.link
             try:
-                self.w.bridge.link.continue_program()
+                waiting(self.w, f"Controller {self.w.bridge.controller_id}: continuing …", link.continue_program)
             except LinkError as exc:
                 self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: {exc}")
 
@@ -297,9 +306,10 @@ class Development:
             for d in result.errors:
                 self.w.messages.ide(d.format())
             return
+        link = self.w.bridge.link
         try:
-            self.w.bridge.link.download(result.image.to_bytes(), name="command")
-            self.w.bridge.link.start()
+            waiting(self.w, f"Controller {self.w.bridge.controller_id}: executing the command …",
+                    lambda: (link.download(result.image.to_bytes(), name="command"), link.start()))
         except LinkError as exc:
             self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: {exc}")
 

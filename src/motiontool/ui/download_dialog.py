@@ -30,6 +30,7 @@ from PySide6.QtWidgets import (
 from motiontool import __version__
 from motiontool.aposs.driver import compile_source
 from motiontool.comms.protocol import LinkError
+from motiontool.ui.link_jobs import waiting
 from motiontool.ui.parameter_dialogs import controller_link
 
 _RANGE = re.compile(r"^\s*(\d+)\s*(?:-\s*(\d+))?\s*$")
@@ -130,6 +131,18 @@ class DownloadDialog(QDialog):
 
     # --- processing --------------------------------------------------------------------------------------------
     def start(self) -> bool:
+        """Start: disabled until the run ends (the log's processEvents lets Stop be pressed, and Start too)."""
+        self.buttons["Start"].setEnabled(False)
+        try:
+            return self._start()
+        finally:
+            self.buttons["Start"].setEnabled(True)
+
+    def _ask(self, cid: int, doing: str, work):
+        """One exchange with a controller on a thread; the window paints and says what it waits for."""
+        return waiting(self.w, f"Controller {cid}: {doing} …", work)
+
+    def _start(self) -> bool:
         self._stopping, self.failed, self.succeeded = False, [], []
         self.log.clear()
         self.say(f"motiontool {__version__} — Download Mode")
@@ -173,7 +186,8 @@ class DownloadDialog(QDialog):
         stored = []
         for cid in ids:
             try:
-                programs = controller_link(self.w, cid).list_programs()
+                programs = self._ask(cid, "listing its programs",
+                                     lambda cid=cid: controller_link(self.w, cid).list_programs())
             except (LinkError, ValueError):
                 continue
             if programs:
@@ -192,33 +206,33 @@ class DownloadDialog(QDialog):
 
     def process(self, cid: int, image: bytes, name: str) -> bool:
         opt = {key: box.isChecked() for key, box in self.options.items()}
+        ask = self._ask
+        stack = self.w.development.compiler_settings().stack_size
         try:
-            link = controller_link(self.w, cid)
+            link = ask(cid, "connecting", lambda: controller_link(self.w, cid))
             if opt["download"]:
-                if link.status().program_state in ("running", "break"):
-                    link.break_program()
+                if ask(cid, "asking its state", lambda: link.status().program_state) in ("running", "break"):
+                    ask(cid, "stopping its program", link.break_program)
                     self.say(f"Controller {cid}: program stopped")
                 self.say(f"Controller {cid}: deleting programs")
-                for program in link.list_programs():
-                    link.delete_program(program.number)
-                link.download(image, number=0, name=name,
-                              stack_size=self.w.development.compiler_settings().stack_size)
+                ask(cid, "deleting programs", lambda: [link.delete_program(p.number) for p in link.list_programs()])
+                ask(cid, f"downloading {name}", lambda: link.download(image, number=0, name=name, stack_size=stack))
                 self.say(f"Controller {cid}: saved as \"{name}\" (program 0)")
             if opt["verify"]:
-                stored = link.upload_program(0)
+                stored = ask(cid, "verifying", lambda: link.upload_program(0))
                 if stored != image:
                     self.say(f"Controller {cid}: verify failed: program 0 differs from {self.file.text()}")
                     return False
                 self.say(f"Controller {cid}: verify ok")
             if opt["download"]:
                 if opt["autostart"]:
-                    link.set_autostart(0)
+                    ask(cid, "setting Autostart", lambda: link.set_autostart(0))
                     self.say(f"Controller {cid}: Autostart set")
                 if opt["eprom"]:
-                    link.save_memory("ram")
+                    ask(cid, "saving RAM", lambda: link.save_memory("ram"))
                     self.say(f"Controller {cid}: saving RAM")
                 if opt["restart"]:
-                    link.power_on()
+                    ask(cid, "restarting", link.power_on)
                     self.say(f"Controller {cid}: restarted")
         except (LinkError, ValueError) as exc:
             self.say(f"Controller {cid}: {exc}")
