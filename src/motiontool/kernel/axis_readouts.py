@@ -42,7 +42,7 @@ def jerkfinvel(ctl, vm, args):
 
 
 @command("JERKSTOPDIST")
-def jerkstopdist(ctl, vm, args):
+def jerkstopdist(ctl, vm, args) -> int:
     """CR 1862-1870: the distance (UU) a RAMPTYPE 2 stop from the present motion needs with deceleration `dec`
     (VELRES units) — the same stop this controller's profile generator runs (K121); signed like the motion."""
     s, pg = ctl.axis.scaling, ctl.axis.profile

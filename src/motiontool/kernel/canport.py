@@ -50,7 +50,7 @@ class Mailbox:
 
 
 class CanPort:
-    def __init__(self, controller):
+    def __init__(self, controller) -> None:
         self.controller = controller
         self.bus = CanBus()
         self.bus.attach(self)

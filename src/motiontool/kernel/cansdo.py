@@ -61,7 +61,7 @@ class Transfer:
 class SdoClient:
     """The channels of one controller (port.sdo)."""
 
-    def __init__(self, port):
+    def __init__(self, port) -> None:
         self.port = port
         self.channels: dict[int, Transfer] = {}
 
@@ -218,7 +218,7 @@ def describe(transfer: Transfer) -> str:
 class SdoServer:
     """The kernel's SDO server of one controller (when no bridge serves it, CanBus.kernel_sdo_servers)."""
 
-    def __init__(self, port):
+    def __init__(self, port) -> None:
         self.port = port
         self._upload: bytes | None = None
         self._download: bytearray | None = None

@@ -187,7 +187,7 @@ class Markers:
     """The controller's marker inputs: latches MIPOS/IPOS every tick and feeds a running SYNCM or the marker
     handling of a running SYNCC/SYNCCMM/SYNCCMS (kernel/cam_markers.py)."""
 
-    def __init__(self, ctl):
+    def __init__(self, ctl) -> None:
         self.ctl = ctl
         mc, pc = ctl.master.config, ctl.axis.plant.config
         self.master = MarkerChannel(MASTER_MARKER_INPUT, MarkerSensor(
