@@ -10,6 +10,7 @@ controller is only compared."""
 from __future__ import annotations
 
 import re
+from functools import partial
 from pathlib import Path
 
 from PySide6.QtWidgets import (
@@ -186,8 +187,8 @@ class DownloadDialog(QDialog):
         stored = []
         for cid in ids:
             try:
-                programs = self._ask(cid, "listing its programs",
-                                     lambda cid=cid: controller_link(self.w, cid).list_programs())
+                link = self._ask(cid, "connecting", partial(controller_link, self.w, cid))
+                programs = self._ask(cid, "listing its programs", link.list_programs)
             except (LinkError, ValueError):
                 continue
             if programs:
@@ -209,7 +210,7 @@ class DownloadDialog(QDialog):
         ask = self._ask
         stack = self.w.development.compiler_settings().stack_size
         try:
-            link = ask(cid, "connecting", lambda: controller_link(self.w, cid))
+            link = ask(cid, "connecting", partial(controller_link, self.w, cid))
             if opt["download"]:
                 if ask(cid, "asking its state", lambda: link.status().program_state) in ("running", "break"):
                     ask(cid, "stopping its program", link.break_program)
