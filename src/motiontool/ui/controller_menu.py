@@ -25,6 +25,7 @@ from PySide6.QtWidgets import (
 from motiontool.comms.client import ProgramInfo
 from motiontool.comms.protocol import LinkError
 from motiontool.ui.controllers import SIMULATED_IDS
+from motiontool.ui.link_jobs import waiting
 
 SET_LABELS = {"global": "Global parameters", "axis": "Axis parameters", "user": "User parameters",
               "drive": "FC 300 drive parameters", "arrays": "Arrays"}
@@ -84,7 +85,9 @@ def save_parameters(w, path: Path | None = None) -> bool:
         path = Path(chosen)
     transfer, zbc = _config_io()
     try:
-        zbc.write_config(path, transfer.upload_config(link))
+        config = waiting(w, f"Controller {w.bridge.controller_id}: reading its configuration …",
+                         lambda: transfer.upload_config(link))
+        zbc.write_config(path, config)
     except OSError as exc:
         _write_failed(w, "Save to file", path, exc)
         return False
@@ -146,8 +149,8 @@ def restore_parameters(w, path: Path | None = None, controller_id: int | None = 
             return False
         controller_id, sets = dialog.controller_id(), dialog.sets()
     try:
-        transfer.download_config(w.controllers.link(controller_id, interface=w.connection.interface_key), config,
-                                 sets)
+        waiting(w, f"Controller {controller_id}: restoring {', '.join(sets) or 'nothing'} …", lambda: transfer.
+                download_config(w.controllers.link(controller_id, interface=w.connection.interface_key), config, sets))
     except (LinkError, zbc.ConfigError, ValueError) as exc:
         w.messages.ide(f"Restore from file: controller {controller_id}: {exc}")
         return False
@@ -165,7 +168,7 @@ def reset(w, what: str, ask: bool = True) -> bool:
             != QMessageBox.StandardButton.Yes:
         return False
     try:
-        link.reset(what)
+        waiting(w, f"Controller {w.bridge.controller_id}: reset {title.lower()} …", lambda: link.reset(what))
     except LinkError as exc:
         w.messages.ide(f"Reset {title}: {exc}")
         return False
@@ -182,7 +185,8 @@ def memory(w, what: str, *, ask: bool = True) -> bool:
     if ask and QMessageBox.question(w, title, f"{title}: {effect}. Continue?") != QMessageBox.StandardButton.Yes:
         return False
     try:
-        link.delete_eprom() if what == "delete" else link.save_memory(what)
+        waiting(w, f"Controller {w.bridge.controller_id}: {title} …",
+                link.delete_eprom if what == "delete" else lambda: link.save_memory(what))
     except LinkError as exc:
         w.messages.ide(f"{title}: {exc}")
         return False
@@ -231,8 +235,13 @@ class ProgramsDialog(QDialog):
     def link(self):
         return self.w.bridge.link
 
+    def _ask(self, doing: str, work):
+        """One exchange on a thread; the window paints and says what it waits for (issue 27 item 2)."""
+        return waiting(self.w, f"Controller {self.w.bridge.controller_id}: {doing} …", work)
+
     def programs(self) -> list[ProgramInfo]:
-        return self.link.list_programs() if self.link is not None else []
+        link = self.link
+        return self._ask("listing its programs", link.list_programs) if link is not None else []
 
     def refresh(self) -> None:
         rows = self.programs()
@@ -266,9 +275,10 @@ class ProgramsDialog(QDialog):
                 return False
         image = outcome.result.image
         source = self._source(outcome.result) if self.include_source.isChecked() else None
+        link, stack = self.link, self.w.development.compiler_settings().stack_size
         try:
-            self.link.download(image.to_bytes(), number=number, name=(name or image.name)[:8], source=source,
-                               stack_size=self.w.development.compiler_settings().stack_size)
+            self._ask(f"saving program {number}", lambda: link.download(
+                image.to_bytes(), number=number, name=(name or image.name)[:8], source=source, stack_size=stack))
         except LinkError as exc:
             self.w.messages.ide(f"Programs: {exc}")
             return False
@@ -312,7 +322,8 @@ class ProgramsDialog(QDialog):
         if number is None:
             return None
         try:
-            stored = self.link.upload_source(number)
+            link = self.link
+            stored = self._ask(f"uploading program {number}", lambda: link.upload_source(number))
         except LinkError as exc:
             self.w.messages.ide(f"Upload: {exc}")
             return None
@@ -347,7 +358,8 @@ class ProgramsDialog(QDialog):
         if number is None:
             return False
         try:
-            self.link.start(number)
+            link = self.link
+            self._ask(f"starting program {number}", lambda: link.start(number))
         except LinkError as exc:
             self.w.messages.ide(f"Programs: {exc}")
             return False
@@ -360,18 +372,20 @@ class ProgramsDialog(QDialog):
             return
         current = next((p.number for p in self.programs() if p.autostart), None)
         if on or current == number:
-            self.link.set_autostart(number if on else None)
+            link = self.link
+            self._ask("setting Autostart", lambda: link.set_autostart(number if on else None))
         self.refresh()
 
     def delete(self) -> None:
         number = self.selected_number()
         if number is not None:
-            self.link.delete_program(number)
+            link = self.link
+            self._ask(f"deleting program {number}", lambda: link.delete_program(number))
             self.refresh()
 
     def delete_all(self) -> None:
-        for p in self.programs():
-            self.link.delete_program(p.number)
+        numbers, link = [p.number for p in self.programs()], self.link
+        self._ask("deleting its programs", lambda: [link.delete_program(n) for n in numbers])
         self.refresh()
 
 
@@ -422,7 +436,9 @@ def diagnostic_report(w, path: Path | None = None) -> bool:
 
     zbc = _config_io()[1]
     try:
-        atomic_write_text(path, diagnostic_report_text(link, w.bridge.controller_id))
+        text = waiting(w, f"Controller {w.bridge.controller_id}: reading its state for the report …",
+                       lambda: diagnostic_report_text(link, w.bridge.controller_id))
+        atomic_write_text(path, text)
     except OSError as exc:
         _write_failed(w, "Diagnostic Report", path, exc)
         return False

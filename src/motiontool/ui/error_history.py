@@ -26,6 +26,7 @@ from PySide6.QtWidgets import (
 
 from motiontool.comms.client import ErrorRecord
 from motiontool.comms.protocol import LinkError
+from motiontool.ui.link_jobs import waiting
 
 COLUMNS = ("#", "Time", "Age", "Error", "Message", "Data", "Offset", "Line", "Program")
 
@@ -84,10 +85,13 @@ class ErrorHistoryDialog(QDialog):
 
     def refresh(self) -> bool:
         """Read the list; Age counts from the controller's clock now."""
-        try:
+        def read():
             link = self.link()
-            history = link.error_history()
-            now = link.status().time_ms
+            return link.error_history(), link.status().time_ms
+
+        self.header.setText(f"Controller {self.controller_id}: reading the error history …")
+        try:
+            history, now = waiting(self.w, f"Controller {self.controller_id}: reading its error history …", read)
         except (LinkError, ValueError) as exc:
             self.header.setText(f"Controller {self.controller_id}: {exc}")
             return False
@@ -145,7 +149,8 @@ class ErrorHistoryDialog(QDialog):
 
     def clear(self) -> None:
         try:
-            self.link().clear_error_history()
+            waiting(self.w, f"Controller {self.controller_id}: clearing its error history …",
+                    lambda: self.link().clear_error_history())
         except (LinkError, ValueError) as exc:
             self.header.setText(f"Controller {self.controller_id}: {exc}")
             return
