@@ -24,6 +24,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+from motiontool.apc import fused
 from motiontool.apc.cam import Cam, CamError
 from motiontool.apc.camlaws import ERR_SIZE_ZERO
 from motiontool.apc.diglock import DigitalLock
@@ -38,6 +39,7 @@ from motiontool.apc.units import POS_RATE_US, UserUnits, rpm_to_speed, speed_to_
 STOP, POSITION, SPEED, CAM, DIG_LOCK = range(5)
 PROFILED_STOP, INSTANT_STOP, LINEAR_STOP, SPEED_STOP = range(4)
 APC_VERSION = 10404        # [15]: the firmware generation the simulation follows (V01.04.04, user units)
+assert (fused.STOP, fused.CAM) == (STOP, CAM)
 
 
 class Slots(dict):
@@ -248,7 +250,10 @@ class KernelCore:
         return slot.word if slot is not None else 0
 
     def tick(self) -> None:
-        """One POS sample (module docstring). Written for speed: it runs 1000-4000 times per simulated second."""
+        """One POS sample (module docstring). Written for speed: it runs 1000-4000 times per simulated second; the
+        common state of a CAM or CTSync line runs fused (apc/fused.py), with the same steps."""
+        if fused.steady_tick(self):
+            return
         self.samples += 1
         t_prev = self.time_ns
         self.time_ns = t_prev + self.period_ns

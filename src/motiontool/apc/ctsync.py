@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
+from motiontool.apc import fused
 from motiontool.apc.drive import ApcDrive
 from motiontool.apc.units import pos_rate_code
 
@@ -73,13 +74,16 @@ class CTSyncLine:
                     d.ctsync_counts[1] += 1
         sent = None
         period = self.drives[0].period_ns
+        steady_tick = fused.steady_tick    # ApcDrive.tick's first step, called here without the method's call
         for d in self.drives:
             if d.period_ns != period:      # a REINIT in a node's program (L2077; checked here, sample by sample)
                 raise CTSyncRateError(self)
             d.ctsync_out = None
-            d.tick()
-            if d.ctsync_out is not None:
-                sent = d.ctsync_out
+            if not steady_tick(d):
+                d.tick()
+            out = d.ctsync_out
+            if out is not None:
+                sent = out
         self._in_flight = sent
 
     @property
