@@ -128,3 +128,18 @@ def test_a_line_ticks_its_drives_fused(monkeypatch):
     monkeypatch.setattr(fused, "steady_tick", lambda d: calls.append(d) or real(d))
     line.tick()
     assert calls == line.drives
+
+
+@pytest.mark.parametrize("position", [-5e-324, -1e-310, -0.0, 5e-324, -65536.0, -65535.5])
+def test_the_fused_encoder_word_of_a_position_next_to_a_count(position: float, monkeypatch):
+    """The fused tick quantises with floor(pos / step), Plant.step with int(pos // step): the same count also where
+    pos / step underflows to -0.0 (a motor a hair below 0)."""
+    words = []
+    for steady in (fused.steady_tick, lambda d: False):
+        monkeypatch.setattr(fused, "steady_tick", steady)
+        d, _ = cam_drive()
+        d.params.write((1, 11), 0)                      # not running: the motor coasts, here at rest
+        d.plant.position, d.plant.speed = position, 0.0
+        d.tick()
+        words.append(d.plant.word)
+    assert words[0] == words[1]

@@ -12,6 +12,8 @@ the traces to those of the APC before this module, row for row, and this tick to
 
 from __future__ import annotations
 
+from math import floor as _floor
+
 from motiontool.apc.cam import CamError
 from motiontool.apc.camlaws import INTERIOR, linear
 from motiontool.apc.plant import WORD48
@@ -55,7 +57,12 @@ def steady_tick(d) -> bool:
     plant.speed = v
     step = plant._step
     if step:
-        word = plant.word = (int(pos // step) * step) & WORD48
+        # int(pos // step) as floor(pos / step): the step is a power of two (it divides 2^32), so the quotient is
+        # exact, except a negative position so near 0 that it underflows to -0.0
+        k = _floor(pos / step)
+        if not k and pos < 0.0:
+            k = -1
+        word = plant.word = (k * step) & WORD48
     else:
         word = plant.word = plant._quantised()
     lo, hi = plant._mark_window
@@ -106,7 +113,7 @@ def steady_tick(d) -> bool:
         d._capture(t_prev)
     if d.run_mode != 2 or not d._was_enabled or d._reset_request:
         d._kernel()
-    elif d._active != CAM or d.reference != CAM or d.offset_select or d.opg.position or d.opg.speed:
+    elif d._active != CAM or d.reference != CAM or d.offset_select or (opg := d.opg).position or opg.speed:
         d._enabled_sample()
     else:   # _enabled_sample with the CAM running and no offsets
         ref_now = ref.integrated
