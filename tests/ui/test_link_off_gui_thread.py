@@ -268,6 +268,24 @@ def scope_start_stop(qtbot, w, tmp_path) -> None:
     scope.close()
 
 
+def scope_single_shot(qtbot, w, tmp_path) -> None:
+    connect(qtbot, w)
+    w.actions_by_text["Oscilloscope"].trigger()
+    scope = w._scopes[-1]
+    with answering(qtbot, ok_reply(), timeout=20_000):   # the recording dialog, as it is
+        scope.mode_actions["single_shot"].trigger()
+    scope.add_signal_curve("4119", group="Test Group (Single Shot)")
+    RECORD.clear()
+    start = next(b for b in scope.findChildren(QToolButton) if b.defaultAction() is scope.start_action)
+    stop = next(b for b in scope.findChildren(QToolButton) if b.defaultAction() is scope.stop_action)
+    click(qtbot, start)
+    qtbot.waitUntil(lambda: scope.single_shot is not None and scope.single_shot.running, timeout=20_000)
+    click(qtbot, stop)
+    qtbot.waitUntil(lambda: not scope.running and len(scope.scope.curves[0].buffer) > 0, timeout=20_000)
+    scope.ask = False
+    scope.close()
+
+
 @dataclass(frozen=True)
 class Case:
     action: Callable
@@ -287,7 +305,8 @@ CASES = {
     "Parameters > Axis": Case(axis_parameters),
     "Watch": Case(watch),
     "Error History": Case(error_history),
-    "Oscilloscope Start/Stop": Case(scope_start_stop, "FreeRun start/stop (stream) on the GUI thread"),
+    "Oscilloscope Start/Stop": Case(scope_start_stop),
+    "Oscilloscope Single Shot Start/Stop": Case(scope_single_shot),
 }
 
 

@@ -12,6 +12,8 @@ and calls `feed`, so these classes never subscribe on their own unless asked to 
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
@@ -21,6 +23,13 @@ from motiontool.comms.protocol import LinkEvent
 from motiontool.scope.curves import Curve, Group, Scope, Source, signal_label
 from motiontool.scope.select import apply, canonical, parse_selection, split_signal, with_suffix
 from motiontool.scope.trigger import Capture, Trigger
+
+Run = Callable[[Callable[[], Any]], Any]   # runs a link request and returns its answer
+
+
+def _now(request: Callable[[], Any]) -> Any:
+    return request()
+
 
 SYS_CLOCK = "4119"          # SYSVAR sys_clock (docs/sysvar.md): a poll reads it to time-stamp its values
 # Bus load of a poll (DG 5406-5418 gives no formula): every polled curve costs one expedited SDO upload,
@@ -82,7 +91,8 @@ class FreeRun:
     def curves(self) -> list[Curve]:
         return [c for c in self.scope.members(self.group) if c.active]
 
-    def start(self, clear: bool = True) -> None:
+    def start(self, clear: bool = True, *, run: Run = _now) -> None:
+        """`run(request)` makes the link request (a window runs it on a thread and paints meanwhile)."""
         group = self.scope.group(self.group)
         curves = self.curves()
         if not curves:
@@ -100,12 +110,16 @@ class FreeRun:
             self.capture = Capture(trig, len(curves))
         if self._subscribed:
             self.link.subscribe(self._on_event)
-        self.link.stream(self._signals, interval_ms=group.interval_ms)
-        self.running = True
+        self.running = True    # before the request: packets that come while it is answered are the run's
+        try:
+            run(lambda: self.link.stream(self._signals, interval_ms=group.interval_ms))
+        except BaseException:
+            self.running = False
+            raise
 
-    def stop(self) -> None:
+    def stop(self, *, run: Run = _now) -> None:
         if self.running:
-            self.link.stream([], interval_ms=1)
+            run(lambda: self.link.stream([], interval_ms=1))
             if self._subscribed:
                 self.link.unsubscribe(self._on_event)
         self.running = False
@@ -232,13 +246,13 @@ class SingleShot:
     def curves(self) -> list[Curve]:
         return [c for c in self.scope.members(self.group) if c.active]
 
-    def start(self) -> None:
+    def start(self, *, run: Run = _now) -> None:
         g = self.scope.group(self.group)
         curves = self.curves()
         if not curves:
             raise ValueError(f"group '{self.group}' has no active curve")
-        status = self.link.start_recording([c.source.signal for c in curves], interval_ms=g.interval_ms,
-                                           destination=g.destination, cyclic=g.cyclic, count=g.count)
+        status = run(lambda: self.link.start_recording([c.source.signal for c in curves], interval_ms=g.interval_ms,
+                                                       destination=g.destination, cyclic=g.cyclic, count=g.count))
         self.limit = status.limit
         for c in curves:
             c.buffer.clear()
@@ -249,12 +263,12 @@ class SingleShot:
     def status(self) -> RecordingStatus | None:
         return self.link.recording_status()
 
-    def stop(self) -> int:
+    def stop(self, *, run: Run = _now) -> int:
         """Upload the recording into the curves; returns the number of sets."""
         if not self.running:
             return 0
         self.running = False
-        data = self.link.stop_recording()
+        data = run(self.link.stop_recording)
         t = np.asarray(data.time_ms, dtype=float)
         v = np.asarray(data.samples, dtype=float).reshape(t.size, len(data.signals))
         for c, j in zip(self.curves(), range(v.shape[1]), strict=False):

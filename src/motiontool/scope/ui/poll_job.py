@@ -1,7 +1,9 @@
 """A link request of the oscilloscope on a thread of its own (issue 27 item 2: the window never waits for the
 wire). One at a time: asked again while one is on the line, the new one is left out, which is what a poll wants
 (the next comes a poll interval later with fresher values); the answer, or the exception it raised, reaches
-`done` in the GUI thread."""
+`done` in the GUI thread. `wait(window, text, request)` is for Start/Stop, which need the answer before they go
+on: the request runs on such a thread while the window paints, says `text` and shows a busy cursor; user input
+waits meanwhile, so Start or Stop cannot begin twice."""
 
 from __future__ import annotations
 
@@ -10,7 +12,8 @@ import threading
 from collections.abc import Callable
 from typing import Any
 
-from PySide6.QtCore import QObject, Signal
+from PySide6.QtCore import QEventLoop, QObject, Qt, Signal
+from PySide6.QtWidgets import QApplication
 
 
 class PollJob(QObject):
@@ -41,3 +44,24 @@ class PollJob(QObject):
     def _deliver(self, done: Callable[[Any], None], result: Any) -> None:
         self.busy = False
         done(result)
+
+
+def wait(window, text: str, request: Callable[[], Any]) -> Any:
+    """`request()` on a thread; returns its answer or raises what it raised."""
+    box: list[Any] = []
+    loop = QEventLoop()
+    job = PollJob(name="scope-wait")
+    job.run(request, lambda result: (box.append(result), loop.quit()))
+    window.statusBar().showMessage(text)
+    QApplication.setOverrideCursor(Qt.CursorShape.BusyCursor)
+    try:
+        while not box:   # the answer may come before exec(): then the loop ends at its first pass
+            loop.exec(QEventLoop.ProcessEventsFlag.ExcludeUserInputEvents)
+    finally:
+        QApplication.restoreOverrideCursor()
+        if window.statusBar().currentMessage() == text:
+            window.statusBar().clearMessage()
+        job.deleteLater()
+    if isinstance(box[0], BaseException):
+        raise box[0]
+    return box[0]

@@ -14,6 +14,7 @@ from motiontool.scope import derived
 from motiontool.scope.acquisition import FreeRun, SingleShot
 from motiontool.scope.tune import PID_PARAMETERS, Tune
 from motiontool.scope.ui.dialogs import TriggerDialog
+from motiontool.scope.ui.poll_job import wait
 
 LIST_EVERY = 4          # list values and title every 4th chart refresh while recording
 
@@ -46,14 +47,16 @@ class RunControl:
                 if group is None:
                     raise ValueError("no active Single Shot group")
                 self.single_shot = SingleShot(self.scope, link, group.name)
-                self.single_shot.start()
+                self.single_shot.start(run=lambda request: wait(self, "Starting the Single Shot recording …",
+                                                                request))
             else:
                 groups = [g for g in self.scope.groups if g.method == "free_run" and g.active
                           and any(c.active for c in self.scope.members(g.name))]
                 if groups:
                     self.free_run = FreeRun(self.scope, link, groups[0].name)
                     self.free_run.trigger, self.free_run.single = self.trigger, self.trigger_single
-                    self.free_run.start(clear=not resume)
+                    self.free_run.start(clear=not resume,
+                                        run=lambda request: wait(self, "Starting the recording …", request))
                 self.polling.link = link
                 if self.polling.curves():
                     self.polling.start(clear=not resume)
@@ -85,7 +88,7 @@ class RunControl:
             progress.setWindowTitle("Single Shot")
             progress.show()
             try:
-                sets = self.single_shot.stop()
+                sets = self.single_shot.stop(run=lambda request: wait(self, "Uploading the recording …", request))
                 self.statusBar().showMessage(f"Uploaded {sets} sample sets", 10000)
             except LinkError as exc:
                 self.statusBar().showMessage(f"Upload failed: {exc}", 10000)
@@ -98,7 +101,7 @@ class RunControl:
         self.polling.stop()
         if self.free_run is not None:
             with contextlib.suppress(LinkError):
-                self.free_run.stop()
+                self.free_run.stop(run=lambda request: wait(self, "Stopping the recording …", request))
 
     def _finish_run(self) -> None:
         self.refresh_timer.stop()
