@@ -18,6 +18,11 @@ an APOSS window (offscreen) connected to its controller 1, which runs a program 
 - ide_watch_polls: Watch polls whose values reached the pane per second,
 - ide_polling_scope_longest_stall / _longest_busy / _polls: the same while the oscilloscope polls APOS, CPOS and
   TRACKERR every 100 ms (a poll is one request of 4 signals; the reads go on the scope's poll thread).
+- ide_connect_longest_stall / _longest_busy / ide_connect_seconds: the window connecting to controller 1 (as Esc
+  does: open, identify) with the 10 ms timer running; before issue 27 item 2 the window stood still the whole time,
+- ide_execute_longest_stall / _longest_busy / ide_execute_seconds: the same for Execute (status, download, start),
+- ide_download_all_longest_stall / _longest_busy / ide_download_all_seconds: the same for Development ▸ Download
+  all with Download and Verify (delete, download, upload to compare) on controller 1, from Start until done.
 `--baud` sets another baud rate (the names of the first four follow it)."""
 
 import argparse
@@ -25,6 +30,7 @@ import os
 import sys
 import tempfile
 import time
+from pathlib import Path
 
 from link_fc import start_drive
 
@@ -44,9 +50,12 @@ def main() -> None:
     from PySide6.QtCore import QEventLoop, QSettings, QTimer
     from PySide6.QtWidgets import QApplication
 
+    from motiontool.controller import schemes
     from motiontool.ui.controllers import InterfaceConfig
     from motiontool.ui.main_window import MainWindow
     from motiontool.ui.parameter_dialogs import ParametersDialog
+
+    schemes.register()  # the window's simulators, as the `motiontool` command registers them
 
     app = QApplication.instance() or QApplication(sys.argv)
     proc, url = start_drive(args.baud)
@@ -56,11 +65,20 @@ def main() -> None:
         window.show()
         try:
             window.controllers.set_default(InterfaceConfig("fc", url.removeprefix("fc:"), args.baud, 1, 1))
-            if not window.connection.select(1):
+            connected, *connect = measured(window, lambda: window.connection.select(1), QEventLoop, QTimer)
+            if not connected:
                 raise SystemExit(window.messages.toPlainText())
             editor = window.new_file()
             editor.setPlainText(PROGRAM)
-            window.actions_by_text["Execute"].trigger()       # a command: it waits for its download
+            window.save(editor=editor, path=Path(tmp) / "tick.m")
+            download = download_all(app, window, QEventLoop, QTimer)
+            # a command: it waits for its download (off the GUI thread: the window paints meanwhile)
+            _, *execute = measured(window, window.actions_by_text["Execute"].trigger, QEventLoop, QTimer)
+            for name, (stall, busy, took) in (("connect", connect), ("download_all", download),
+                                              ("execute", execute)):
+                print(f"ide_{name}_longest_stall: {stall:.0f} ms")
+                print(f"ide_{name}_longest_busy: {busy:.0f} ms")
+                print(f"ide_{name}_seconds: {took:.2f} s")
             answers, ticks = [], []
             window.bridge.status_changed.connect(lambda status: answers.append(status.time_ms))
             timer = QTimer(window, interval=10, timeout=lambda: ticks.append(time.monotonic()))
@@ -97,6 +115,53 @@ def main() -> None:
             window.close()
             proc.terminate()
             proc.wait(timeout=20)
+
+
+def measured(window, act, QEventLoop, QTimer):  # noqa: N803 - Qt's names
+    """`act()` with a 10 ms timer running: (its result, longest gap of the timer in ms, most GUI-thread CPU time in
+    one gap in ms, seconds `act` took). The timer runs a moment before and after, so a window that stood still
+    for the whole of `act` shows that as one gap."""
+    ticks: list[tuple[float, float]] = []
+    timer = QTimer(window, interval=10, timeout=lambda: ticks.append((time.monotonic(), time.thread_time())))
+    timer.start()
+    pause(100, QEventLoop, QTimer)
+    started = time.monotonic()
+    result = act()
+    took = time.monotonic() - started
+    pause(100, QEventLoop, QTimer)
+    timer.stop()
+    pairs = list(zip(ticks, ticks[1:], strict=False))
+    return result, 1000 * max(b[0] - a[0] for a, b in pairs), 1000 * max(b[1] - a[1] for a, b in pairs), took
+
+
+def pause(ms: int, QEventLoop, QTimer) -> None:  # noqa: N803 - Qt's names
+    loop = QEventLoop()
+    QTimer.singleShot(ms, loop.quit)
+    loop.exec()
+
+
+def download_all(app, window, QEventLoop, QTimer):  # noqa: N803 - Qt's names
+    """Development ▸ Download all, Start pressed once the dialog shows, closed when it is done: (longest gap in
+    ms, most GUI-thread CPU time in one gap in ms, seconds from Start until done)."""
+    from motiontool.ui.download_dialog import DownloadDialog
+
+    figures: list = []
+
+    def press() -> None:
+        dialog = app.activeModalWidget()
+        if not isinstance(dialog, DownloadDialog) or figures:
+            return
+        poll.stop()
+        figures.extend(measured(window, dialog.buttons["Start"].click, QEventLoop, QTimer)[1:])
+        if "Done for controllers: 1" not in dialog.log.toPlainText():
+            print(f"Download all failed: {dialog.log.toPlainText()}", file=sys.stderr)
+            figures[:] = [float("nan")] * 3
+        dialog.reject()
+
+    poll = QTimer(window, interval=20, timeout=press)
+    poll.start()
+    window.actions_by_text["Download all"].trigger()    # returns when the dialog is closed
+    return figures or [float("nan")] * 3
 
 
 def axis_dialog(app, window, dialog_class, QEventLoop, QTimer):  # noqa: N803 - Qt's names
