@@ -11,11 +11,12 @@ xfail(strict): the list of marks is what remains of the item.
 from __future__ import annotations
 
 import threading
+import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
 import pytest
-from PySide6.QtCore import Qt
+from PySide6.QtCore import Qt, QTimer
 from PySide6.QtWidgets import QApplication, QMessageBox, QToolButton
 
 from motiontool.comms import links
@@ -49,6 +50,7 @@ class Recorder:
 
 
 RECORD = Recorder()
+HOLD: dict[str, tuple[threading.Event, threading.Event]] = {}   # op → (it arrived, let it through)
 
 
 class RecordingLink(Link):
@@ -62,6 +64,10 @@ class RecordingLink(Link):
 
     def request(self, request):
         RECORD.note(request.op)
+        if (hold := HOLD.pop(request.op, None)) is not None:   # a slow line, as long as the test wants
+            arrived, through = hold
+            arrived.set()
+            through.wait(30)
         return self.inner.request(request)
 
     def close(self) -> None:
@@ -331,3 +337,44 @@ def test_the_recorder_sees_a_request_on_the_gui_thread(checked):
     link = checked.controllers.link(1)
     link.status()
     assert ("status", True) in RECORD.taken()
+
+
+def test_while_execute_waits_for_its_download_the_window_paints_and_says_so(checked, qtbot, tmp_path):
+    """Execute with its download held on the line: a 20 ms timer of the window keeps firing, the status bar says
+    what it waits for and the cursor is busy; when the answer comes, the program runs and both are gone."""
+    connect(qtbot, checked)
+    program(checked, tmp_path)
+    arrived, through = threading.Event(), threading.Event()
+    HOLD["download"] = (arrived, through)
+    ticks: list[float] = []
+    seen: dict[str, object] = {}
+    timer = QTimer(checked, interval=20, timeout=lambda: ticks.append(time.monotonic()))
+
+    def look() -> None:
+        if not arrived.is_set():
+            QTimer.singleShot(20, look)
+            return
+        if "message" not in seen:
+            seen["message"] = checked.statusBar().currentMessage()
+            cursor = QApplication.overrideCursor()
+            seen["cursor"] = cursor.shape() if cursor is not None else None
+            seen["ticks"] = len(ticks)
+            seen["held_at"] = time.monotonic()
+        if time.monotonic() - seen["held_at"] < 0.5:    # the download stays on the line half a second
+            QTimer.singleShot(20, look)
+            return
+        seen["ticks while held"] = len(ticks) - seen["ticks"]
+        through.set()
+
+    timer.start()
+    QTimer.singleShot(0, look)
+    try:
+        checked.actions_by_text["Execute"].trigger()
+    finally:
+        through.set()
+        timer.stop()
+    said(qtbot, checked, "ran 1")
+    assert seen["message"] == "Controller 1: downloading ran …"
+    assert seen["cursor"] == Qt.CursorShape.BusyCursor
+    assert seen["ticks while held"] >= 5, seen     # 25 at 20 ms; a window that stood still has none
+    assert QApplication.overrideCursor() is None and checked.statusBar().currentMessage() == ""
