@@ -292,6 +292,17 @@ def scope_single_shot(qtbot, w, tmp_path) -> None:
     scope.close()
 
 
+def every_controller(entry: str, says: str):
+    """Development ▸ Break all / Start all / Delete Programs all: Break all and Delete Programs all reach 1 and 2
+    (the scan found both), Start all the open one (F24)."""
+    def act(qtbot, w, tmp_path) -> None:
+        connect(qtbot, w)
+        RECORD.clear()
+        w.actions_by_text[entry].trigger()
+        said(qtbot, w, says)
+    return act
+
+
 @dataclass(frozen=True)
 class Case:
     action: Callable
@@ -304,6 +315,9 @@ CASES = {
     "Execute": Case(execute),
     "Download all": Case(download_all),
     "Programs": Case(programs),
+    "Break all": Case(every_controller("Break all", "Break all: ")),
+    "Start all": Case(every_controller("Start all", "Start all: ")),
+    "Delete Programs all": Case(every_controller("Delete Programs all", "Delete Programs all: ")),
     "Reset > Arrays": Case(reset_arrays),
     "Memory > Save RAM": Case(save_ram),
     "Diagnostic Report": Case(diagnostic_report),

@@ -13,6 +13,8 @@
 
 from __future__ import annotations
 
+from functools import partial
+
 from PySide6.QtWidgets import QToolButton
 
 from motiontool.comms.protocol import LinkError
@@ -141,16 +143,17 @@ class Connection:
         found = []
         for cid in ids:
             try:
-                found.append((cid, self.registry.link(cid, interface=self.interface_key)))
+                found.append((cid, waiting(self.w, f"Controller {cid}: connecting …",
+                                           partial(self.registry.link, cid, interface=self.interface_key))))
             except (LinkError, ValueError) as exc:
                 self.w.messages.ide(f"Controller {cid}: {exc}")
         return found
 
-    def _each(self, action, *, all_in_range: bool) -> list[int]:
+    def _each(self, action, doing: str, *, all_in_range: bool) -> list[int]:
         done = []
         for cid, link in self._interface_links(all_in_range=all_in_range):
             try:
-                if action(link):
+                if waiting(self.w, f"Controller {cid}: {doing} …", partial(action, link)):
                     done.append(cid)
             except LinkError as exc:
                 self.w.messages.ide(f"Controller {cid}: {exc}")
@@ -163,7 +166,7 @@ class Connection:
                 return False
             link.break_program()
             return True
-        done = self._each(stop, all_in_range=True)
+        done = self._each(stop, "Break all", all_in_range=True)
         self.w.messages.ide(f"Break all: stopped the programs of controllers {_ids(done)}" if done
                             else "Break all: no program was running")
         return done
@@ -175,7 +178,7 @@ class Connection:
                 return False
             link.start()
             return True
-        done = self._each(start, all_in_range=False)
+        done = self._each(start, "Start all", all_in_range=False)
         self.w.messages.ide(f"Start all: started controllers {_ids(done)}" if done else "Start all: nothing started")
         return done
 
@@ -186,7 +189,7 @@ class Connection:
             for program in programs:
                 link.delete_program(program.number)
             return bool(programs)
-        done = self._each(delete, all_in_range=True)
+        done = self._each(delete, "Delete Programs all", all_in_range=True)
         self.w.messages.ide(f"Delete Programs all: deleted the programs of controllers {_ids(done)}" if done
                             else "Delete Programs all: no saved programs")
         return done
