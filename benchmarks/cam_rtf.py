@@ -11,7 +11,7 @@ import time
 
 from motiontool.aposs.driver import compile_source
 from motiontool.camcurve import Curve, FixPoint, encode
-from motiontool.comms.embedded import EmbeddedLink
+from motiontool.controller.embedded import EmbeddedLink
 
 POINTS = (FixPoint(0, 0), FixPoint(1500, 1200, "T"), FixPoint(2500, 2400, "T"), FixPoint(4000, 3600))
 SETTINGS = {"SYNCFACTM": 2048, "SYNCFACTS": 55, "POSFACT_Z": 25, "POSFACT_N": 9, "ENCODER": 500, "FFVEL": 1000,

@@ -262,8 +262,8 @@ def check_file(fmt: str, data: bytes, folder: Path) -> None:
 
 def check_image(data: bytes) -> None:
     """Refused with ImageError, or accepted and run for 50 ms without an internal fault or a failed request."""
-    from motiontool.comms.embedded import EmbeddedLink
     from motiontool.comms.protocol import LinkError
+    from motiontool.controller.embedded import EmbeddedLink
 
     try:
         ProgramImage.from_bytes(data)
@@ -289,8 +289,8 @@ def check_dpl(data: bytes, folder: Path) -> None:
     """A DPL program (the APC's language) read from its file by the checker `motiontool check` uses: diagnostics,
     never an exception; a program the checker accepts is downloaded to the simulated APC over its link and runs
     for 50 ms, where a refusal is a LinkError and a program's fault an error event - anything else is a crash."""
-    from motiontool.comms.dpl_program import dpl_link
     from motiontool.comms.protocol import LinkError
+    from motiontool.controller.dpl_program import dpl_link
     from motiontool.dpl.driver import check_source
     from motiontool.dpl.image import DplImage
 

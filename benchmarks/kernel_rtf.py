@@ -28,8 +28,8 @@ import time
 from cam_rtf import start_cam_axis
 from motiontool.aposs.driver import compile_source
 from motiontool.camcurve import Curve, FixPoint, encode
-from motiontool.comms.bus import EmbeddedBus
-from motiontool.comms.embedded import EmbeddedLink
+from motiontool.controller.bus import EmbeddedBus
+from motiontool.controller.embedded import EmbeddedLink
 
 PROGRAM = """
 VEL 100

@@ -24,12 +24,14 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 from PySide6.QtCore import QElapsedTimer, QSettings, QTimer  # noqa: E402
 from PySide6.QtWidgets import QApplication  # noqa: E402
 
+from motiontool.controller import schemes  # noqa: E402
 from motiontool.ui.main_window import MainWindow  # noqa: E402
 
 PROGRAM = 'main:\nPRINT "flood line ", TIME\nGOTO main\n'
 
 
 def main(argv: list[str] | None = None) -> int:
+    schemes.register()  # the window's simulators, as the `motiontool` command registers them
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seconds", type=float, default=5.0)
     args = parser.parse_args(argv)

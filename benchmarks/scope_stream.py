@@ -23,7 +23,7 @@ from PySide6.QtCore import QObject, QTimer, Signal  # noqa: E402
 from PySide6.QtWidgets import QApplication  # noqa: E402
 
 from motiontool.aposs.driver import compile_source  # noqa: E402
-from motiontool.comms.embedded import EmbeddedLink  # noqa: E402
+from motiontool.controller.embedded import EmbeddedLink  # noqa: E402
 from motiontool.scope.acquisition import FreeRun, new_curve  # noqa: E402
 from motiontool.scope.curves import Group, Scope  # noqa: E402
 from motiontool.scope.ui.window import ScopeWindow  # noqa: E402

@@ -5,6 +5,8 @@ from pathlib import Path
 import pytest
 from hypothesis import settings
 
+from motiontool.controller import schemes
+
 # Every test runs without a screen; Qt renders offscreen.
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
@@ -15,6 +17,10 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 # checks is unchanged.
 settings.register_profile("motiontool", deadline=None)
 settings.load_profile("motiontool")
+
+# The test session is a composition root, as the `motiontool` command is: `sim` and `apcsim` links open the
+# simulators (controller/schemes.py; the IDE's side never imports them).
+schemes.register()
 
 
 TESTS = Path(__file__).resolve().parent

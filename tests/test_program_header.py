@@ -6,8 +6,8 @@ from __future__ import annotations
 import pytest
 
 from motiontool.aposs.driver import compile_source
-from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.protocol import LinkError
+from motiontool.controller.embedded import EmbeddedLink
 from motiontool.program_header import HeaderError, read_test_settings
 from tests.test_samples import SAMPLES, SAMPLES_DIR, parse_header
 

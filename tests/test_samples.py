@@ -27,8 +27,8 @@ import pytest
 
 from motiontool.aposs.driver import compile_source
 from motiontool.aposs.simulated import unserved_note
-from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.protocol import LinkEvent
+from motiontool.controller.embedded import EmbeddedLink
 
 SAMPLES_DIR = Path(__file__).resolve().parent.parent / "resources" / "samples"
 SAMPLES = sorted(SAMPLES_DIR.glob("*.m"))

@@ -164,7 +164,7 @@ def build_parser() -> argparse.ArgumentParser:
                        "stderr and goes on (default 30 s, 0: end the run at once)")
     p.set_defaults(func=_cmd_run)
 
-    from motiontool.comms.drive.command import add_parser as add_drive_parser
+    from motiontool.controller.drive.command import add_parser as add_drive_parser
 
     add_drive_parser(sub)
 
@@ -201,6 +201,9 @@ def _files(args: argparse.Namespace) -> tuple[list[tuple[str, Path]], list[tuple
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    from motiontool.controller import schemes
+
+    schemes.register()  # the composition root: `sim` and `apcsim` links open the simulators (issue 27 item 3)
     try:  # a refused number surfaces from parse_args as Refused, its line complete (cliargs.Number)
         args = build_parser().parse_args(argv)
     except Refused as exc:

@@ -18,7 +18,7 @@ from pathlib import Path
 MAX_DIGITS = 30                    # far beyond any value a controller holds; int() never sees a long string
 MAX_RUN_SECONDS = 10 * 24 * 3600   # `run --seconds`: ten days of virtual time
 PORT = (0, 65535)                  # a TCP port; 0 lets the system pick a free one
-NODE_ID = (1, 32)                  # controllers of one simulated project (comms/bus.py)
+NODE_ID = (1, 32)                  # controllers of one simulated project (controller/bus.py)
 
 _WHOLE = re.compile(rf"[-+]?[0-9]{{1,{MAX_DIGITS}}}")
 _HEX = re.compile(rf"[-+]?0[xX][0-9a-fA-F]{{1,{MAX_DIGITS}}}")

@@ -19,10 +19,10 @@ from motiontool.cameditor.transfer import download_config
 from motiontool.cameditor.zbc import ConfigError, read_config
 from motiontool.cliargs import BadNumber, parse_input, parse_setting, shown
 from motiontool.comms.client import ControllerClient
-from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.eventorder import TimeOrder
 from motiontool.comms.links import LinkSpecError, parse_link_spec
 from motiontool.comms.protocol import LinkError, LinkEvent
+from motiontool.controller.embedded import EmbeddedLink
 from motiontool.dpl.driver import is_dpl
 from motiontool.fileio import atomic_write_text, check_writable, write_error
 from motiontool.headless_dpl import run_dpl
@@ -268,7 +268,9 @@ def open_run_link(spec: str | None, realtime: bool = False, node: int | None = N
     `node` as its address when given. A wire link waits up to `patience_s` for a lost connection to come back
     (`--timeout`): a stalled drive pauses the run instead of ending it (decision F30)."""
     from motiontool.comms.links import open_link
+    from motiontool.controller import schemes
 
+    schemes.register()  # a run from Python (not the command) opens `apcsim` and `sim,…` links too
     parsed = parse_link_spec(spec or "sim")
     if parsed.scheme == "sim" and not parsed.options:
         return EmbeddedLink(realtime_factor=1.0 if realtime else None)
@@ -338,9 +340,9 @@ def _write_output(path: Path, header: list[str], rows: list[list]) -> None:
         raise _OutputError(write_error(path, exc)) from None
 
 
-# --- several controllers (--node): a multi-axis project on one master signal (comms/bus.py) -------------------
+# --- several controllers (--node): a multi-axis project on one master signal (controller/bus.py) -------------------
 def run_nodes(path: Path | None, options: RunOptions, out: TextIO | None = None, err: TextIO | None = None) -> int:
-    """Several simulated controllers in lockstep (comms/bus.py, kernel/simulation.py): FILE.m on node 1 and every
+    """Several simulated controllers in lockstep (controller/bus.py, kernel/simulation.py): FILE.m on node 1 and every
     --node ID:PROGRAM.m; the virtual master (PULSVEL) of --master-node (default the lowest id) is the master input
     of all the others. stdout: every PRINT as `N: text`, stderr: controller errors as `N: error …`."""
     out, err = out or sys.stdout, err or sys.stderr
@@ -442,7 +444,7 @@ def _record_path(record: Path, node: int) -> Path:
 def _node_links(nodes: list[int], options: RunOptions):
     """({node: link}, close) for a run on several controllers: one embedded bus, or the --link interface with each
     node id as the address."""
-    from motiontool.comms.bus import EmbeddedBus
+    from motiontool.controller.bus import EmbeddedBus
 
     if parse_link_spec(options.link or "sim").scheme == "sim":
         bus = EmbeddedBus(nodes, master_node=options.master_node if options.master_node is not None else nodes[0])

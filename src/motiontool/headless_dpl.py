@@ -40,7 +40,7 @@ def run_dpl(path: Path | None, options: RunOptions, err: TextIO) -> int:
     run-time errors ('ID: …' with several nodes); exit 1 on a check error or a refused option, 2 on a run-time
     error (a node leaving the line's POS rate is one)."""
     from motiontool.apc.ctsync import MAX_NODES_2WIRE, MAX_NODES_4WIRE, CTSyncRateError
-    from motiontool.comms.dpl_program import dpl_line
+    from motiontool.controller.dpl_program import dpl_line
     from motiontool.dpl.image import DplImage
 
     try:
@@ -162,7 +162,7 @@ def _inputs(per_node: dict[int, list[str]], several: bool, seconds: float) -> li
     freeze input T10, whose edge #81.43 picks and #81.42 passes to the freeze counters (L1076); REF_MARKER=1 or
     FB_MARKER=1, a marker pulse on that encoder (the marker "as an additional high speed Freeze/registration
     input", L633). _Usage for any other form, a number out of range or a time after the end of the run."""
-    from motiontool.comms.apc_service import apc_input
+    from motiontool.controller.apc_service import apc_input
 
     result = []
     for n, specs in per_node.items():

@@ -3,8 +3,8 @@
 import pytest
 
 from motiontool.apc import ApcDrive, CTSyncLine
-from motiontool.comms.apc_service import ApcService, embedded_apc_link
 from motiontool.comms.protocol import LinkError
+from motiontool.controller.apc_service import ApcService, embedded_apc_link
 
 
 def test_identify_names_the_kind():
@@ -80,7 +80,7 @@ def test_a_ctsync_node_service_advances_the_whole_line():
 
 def test_a_ctsync_line_gives_every_node_a_link_on_one_clock():
     """§4.10 (L2058-2101): the nodes run in lockstep; advance on any node's link moves the whole line."""
-    from motiontool.comms.apc_bus import ApcLineBus
+    from motiontool.controller.apc_bus import ApcLineBus
 
     bus = ApcLineBus([ApcDrive(), ApcDrive(), ApcDrive()])
     bus.link(2).advance(25)

@@ -15,8 +15,8 @@ import pytest
 
 from motiontool.aposs.driver import compile_source
 from motiontool.aposs.image import MAGIC, Op
-from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.protocol import LinkError
+from motiontool.controller.embedded import EmbeddedLink
 
 PROGRAM = """DIM arr[4]
 long n

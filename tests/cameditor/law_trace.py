@@ -7,7 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from motiontool.camcurve import Curve, FixPoint, encode
-from motiontool.comms.embedded import EmbeddedLink
+from motiontool.controller.embedded import EmbeddedLink
 from motiontool.headless import _write_csv
 from motiontool.kernel.master import MasterConfig
 from tests.kernel.helpers import start

@@ -9,7 +9,7 @@ import pytest
 
 from motiontool.cameditor.transfer import download_config, upload_config
 from motiontool.cameditor.zbc import ConfigError, ConfigFile, config_text, read_config, write_config
-from motiontool.comms.embedded import EmbeddedLink
+from motiontool.controller.embedded import EmbeddedLink
 
 HEADER = "# motiontool configuration file, format {}\n"
 

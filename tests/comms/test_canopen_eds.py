@@ -4,16 +4,18 @@ from __future__ import annotations
 
 import canopen
 
-from motiontool.comms.canopen import eds
+from motiontool.comms.canopen.objects import eds_path
+from motiontool.controller.canopen import eds
 from motiontool.kernel import objdict
 
 
 def test_the_shipped_eds_is_the_dictionary_and_python_canopen_reads_it():
     """Issue 15 item 1: the dictionary "shipped as an EDS in resources/ that third-party CANopen tools load";
     decisions N1 (parameters at 0x2000 + number) and N8 (identity)."""
-    shipped = eds.eds_path().read_text()
-    assert shipped == eds.eds_text(), "regenerate: python -m motiontool.comms.canopen.eds > resources/eds/mco305.eds"
-    od = canopen.import_od(str(eds.eds_path()), 3)
+    shipped = eds_path().read_text()
+    assert shipped == eds.eds_text(), \
+        "regenerate: python -m motiontool.controller.canopen.eds > resources/eds/mco305.eds"
+    od = canopen.import_od(str(eds_path()), 3)
     assert set(eds.dictionary()) == {obj.index for obj in od.values()}
     kprop = od[0x2000 + 3260]
     assert kprop.name == "32-60 KPROP" and kprop.data_type == canopen.objectdictionary.UNSIGNED32

@@ -1,7 +1,7 @@
 """The CANopen link and the drive's CANopen nodes in one process, on python-can's `virtual` bus (issue 15 items 2-4).
 
-The drive side is the virtual drive's controllers (comms/drive/) served by python-canopen LocalNodes
-(comms/canopen/node.py, server.py); the master side is CanopenLink on python-canopen's RemoteNode, or a bare
+The drive side is the virtual drive's controllers (controller/drive/) served by python-canopen LocalNodes
+(controller/canopen/node.py, server.py); the master side is CanopenLink on python-canopen's RemoteNode, or a bare
 RemoteNode with nothing but the shipped EDS.
 """
 
@@ -15,11 +15,12 @@ import canopen
 import pytest
 
 from motiontool.aposs.driver import compile_source
-from motiontool.comms.canopen import eds
 from motiontool.comms.canopen.link import CanopenLink, scan
-from motiontool.comms.canopen.server import CanopenDrive
-from motiontool.comms.drive.simulator import VirtualDrive
+from motiontool.comms.canopen.objects import eds_path
 from motiontool.comms.protocol import LinkError
+from motiontool.controller.canopen import eds
+from motiontool.controller.canopen.server import CanopenDrive
+from motiontool.controller.drive.simulator import VirtualDrive
 
 _names = itertools.count(1)
 
@@ -61,7 +62,7 @@ def test_python_canopens_remote_node_with_only_the_shipped_eds_reads_and_writes_
     network = canopen.Network()
     network.connect(interface="virtual", channel=drive.channel)
     try:
-        node = network.add_node(2, str(eds.eds_path()))
+        node = network.add_node(2, str(eds_path()))
         node.sdo.RESPONSE_TIMEOUT = 5.0     # per segment: the EDS upload of 0x1021 is long, the machine may be busy
         kprop = node.sdo["32-60 KPROP"]
         assert kprop.raw == 30

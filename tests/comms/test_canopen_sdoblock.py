@@ -1,4 +1,4 @@
-"""SDO block transfers of the drive's SDO servers (comms/canopen/sdoblock.py, decision N14) against
+"""SDO block transfers of the drive's SDO servers (controller/canopen/sdoblock.py, decision N14) against
 python-canopen's own client, and the link's fall-back to segmented transfers for a node without them."""
 
 from __future__ import annotations
@@ -10,10 +10,10 @@ import pytest
 from canopen.sdo import SdoServer
 
 from motiontool.aposs.driver import compile_source
-from motiontool.comms.canopen import eds
 from motiontool.comms.canopen.link import CanopenLink
-from motiontool.comms.canopen.server import CanopenDrive
-from motiontool.comms.drive.simulator import VirtualDrive
+from motiontool.comms.canopen.objects import eds_path
+from motiontool.controller.canopen.server import CanopenDrive
+from motiontool.controller.drive.simulator import VirtualDrive
 
 _names = itertools.count(1)
 
@@ -36,7 +36,7 @@ def drive():
 def node(drive):
     network = canopen.Network()
     network.connect(interface="virtual", channel=drive.channel)
-    node = network.add_node(1, str(eds.eds_path()))
+    node = network.add_node(1, str(eds_path()))
     # python-canopen's client gives an answer 0.3 s and one try: the 572 round trips of a segmented 4 000 bytes
     # failed a clean-clone run when one answer came late on a busy machine. What is tested is the transfer, not
     # the machine's latency: the client waits as a master on a loaded PC would be set to.

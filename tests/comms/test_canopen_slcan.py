@@ -1,5 +1,6 @@
-"""The slcan (Lawicel ASCII) TCP server of the virtual drive and the link's reader of it (comms/canopen/slcan.py),
-against a raw socket, python-can's `virtual` bus on the server's side and python-can's own slcan interface."""
+"""The slcan (Lawicel ASCII) TCP server of the virtual drive (controller/canopen/slcan_server.py) and the link's
+reader of it (comms/canopen/slcan.py), against a raw socket, python-can's `virtual` bus on the server's side and
+python-can's own slcan interface."""
 
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ import can
 import pytest
 
 from motiontool.comms.canopen import slcan
+from motiontool.controller.canopen import slcan_server
 
 pytestmark = pytest.mark.wire
 
@@ -20,7 +22,7 @@ _names = itertools.count(1)
 
 @pytest.fixture
 def server():
-    server = slcan.SlcanServer(f"test-slcan-{next(_names)}")
+    server = slcan_server.SlcanServer(f"test-slcan-{next(_names)}")
     server.peer = can.Bus(interface="virtual", channel=server.channel)
     yield server
     server.peer.shutdown()
@@ -91,10 +93,10 @@ def test_frames_from_the_bus_reach_every_open_client_and_a_silent_client_does_no
 
 def test_a_client_that_does_not_read_loses_frames_counted_instead_of_blocking(server, monkeypatch):
     """An adapter's receive buffer overruns; the server must not wait for one slow master."""
-    monkeypatch.setattr(slcan, "MAX_QUEUED", 10_000)
+    monkeypatch.setattr(slcan_server, "MAX_QUEUED", 10_000)
     near, far = socket.socketpair()
     near.setsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF, 4096)
-    client = slcan._Client(server, near)
+    client = slcan_server._Client(server, near)
     try:
         began = time.monotonic()
         for _ in range(20_000):
@@ -128,7 +130,7 @@ def test_close_ends_every_thread_of_the_server_even_with_a_client_connected():
     """A drive ends on SIGTERM by closing its listeners: the thread waiting in accept() must end too. On Linux
     closing a listening socket does not wake accept(), so it stayed blocked and every close waited out its 2 s join
     (a drive process 'slow to end on SIGTERM', issue 28 item 3)."""
-    server = slcan.SlcanServer(f"test-slcan-{next(_names)}")
+    server = slcan_server.SlcanServer(f"test-slcan-{next(_names)}")
     client = socket.create_connection((server.host, server.port))
     accepting = server._threads[0]
     deadline = time.monotonic() + 30

@@ -138,7 +138,7 @@ def test_two_links_of_one_process_to_one_node_take_turns_on_its_channel():
 @pytest.mark.wire
 def test_connections_beyond_the_limit_are_closed_and_said_once():
     """Every connection had a thread of its own and no limit: at ~1 700 new clients could not connect."""
-    from motiontool.comms.fc.server import MAX_CONNECTIONS
+    from motiontool.controller.fc.server import MAX_CONNECTIONS
 
     with drive_process("--node", "1") as drive:
         host, port = drive.url.removeprefix("fc:socket://").rsplit(":", 1)
@@ -225,7 +225,7 @@ def test_a_download_bigger_than_the_program_memory_is_refused_and_the_drive_stay
     import base64
 
     from motiontool.aposs.driver import compile_source
-    from motiontool.comms.service import PROGRAM_MEMORY_BYTES
+    from motiontool.controller.service import PROGRAM_MEMORY_BYTES
 
     img = compile_source('PRINT "x"\n').image.to_bytes()
     raw = json.loads(zlib.decompress(img[6:]))

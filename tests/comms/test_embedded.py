@@ -5,8 +5,8 @@ import time
 import pytest
 
 from motiontool.aposs.driver import compile_source
-from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.protocol import LinkError, Request
+from motiontool.controller.embedded import EmbeddedLink
 
 
 def image(source: str, debug: bool = False) -> bytes:

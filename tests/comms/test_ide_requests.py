@@ -4,8 +4,8 @@ history, stack size — on the embedded controller, synchronously."""
 import pytest
 
 from motiontool.aposs.driver import compile_source
-from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.protocol import LinkError
+from motiontool.controller.embedded import EmbeddedLink
 
 
 def image(text):

@@ -1,4 +1,4 @@
-"""The link syntax and scheme registry (comms/links.py), the virtual drive's nodes (comms/drive/): thread-safe
+"""The link syntax and scheme registry (comms/links.py), the virtual drive's nodes (controller/drive/): thread-safe
 requests, events with sequence numbers for a polling master, answers kept for repeated requests, the link timeout."""
 
 import re
@@ -9,11 +9,11 @@ import pytest
 
 from motiontool.aposs.driver import compile_source
 from motiontool.comms import links, wire
-from motiontool.comms.drive.node import EventQueue
-from motiontool.comms.drive.simulator import VirtualDrive
-from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.protocol import LinkError, LinkEvent, Request
 from motiontool.comms.remote import RemoteLink
+from motiontool.controller.drive.node import EventQueue
+from motiontool.controller.drive.simulator import VirtualDrive
+from motiontool.controller.embedded import EmbeddedLink
 
 
 def image(source):
@@ -254,7 +254,7 @@ def test_events_after_a_drive_restart_are_all_published():
 def test_drive_command_refuses_bad_set_ups_naming_them(tmp_path):
     import io
 
-    from motiontool.comms.drive.command import DriveOptions, run_drive
+    from motiontool.controller.drive.command import DriveOptions, run_drive
 
     bad = tmp_path / "bad.m"
     bad.write_text("POSA\n")
@@ -275,7 +275,7 @@ def test_drive_command_refuses_bad_set_ups_naming_them(tmp_path):
 def test_every_link_takes_requests_from_several_threads():
     """The IDE asks for the status on a worker thread while its window sends commands and a wire link polls events:
     request ids stay unique per link and every answer belongs to its request, on every kind of link."""
-    from motiontool.comms.bus import EmbeddedBus
+    from motiontool.controller.bus import EmbeddedBus
 
     class Recording(EmbeddedLink):
         def __init__(self):

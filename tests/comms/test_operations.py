@@ -9,12 +9,12 @@ from pathlib import Path
 
 import pytest
 
-from motiontool.comms.apc_service import PROGRAM_OPS, ApcService
 from motiontool.comms.client import METHOD_NAMES, ControllerClient
-from motiontool.comms.dpl_program import DplProgram
-from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.operations import OPERATIONS, SIGNATURES, ControllerOperations, operation_table
-from motiontool.comms.service import ControllerService
+from motiontool.controller.apc_service import PROGRAM_OPS, ApcService
+from motiontool.controller.dpl_program import DplProgram
+from motiontool.controller.embedded import EmbeddedLink
+from motiontool.controller.service import ControllerService
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -91,7 +91,7 @@ def test_every_signal_the_controller_lists_can_be_read_and_streamed(kind):
     if kind == "MCO":
         link = EmbeddedLink()
     else:
-        from motiontool.comms.apc_service import embedded_apc_link
+        from motiontool.controller.apc_service import embedded_apc_link
 
         link = embedded_apc_link()
     signals = link.list_signals()

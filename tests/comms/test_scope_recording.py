@@ -3,8 +3,8 @@
 import pytest
 
 from motiontool.aposs.driver import compile_source
-from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.protocol import LinkError
+from motiontool.controller.embedded import EmbeddedLink
 
 
 def image(source: str) -> bytes:

@@ -9,8 +9,8 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from motiontool.comms.dpl_program import dpl_link
 from motiontool.comms.protocol import LinkError
+from motiontool.controller.dpl_program import dpl_link
 from motiontool.dpl.image import MAX_SOURCE_BYTES, DplImage, DplImageError
 
 

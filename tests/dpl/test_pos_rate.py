@@ -9,7 +9,7 @@ import csv
 
 from motiontool.apc import ApcDrive
 from motiontool.cli import main
-from motiontool.comms.dpl_program import dpl_link
+from motiontool.controller.dpl_program import dpl_link
 from motiontool.dpl.image import DplImage
 
 # Pos0 counts its runs into #18.11, Background its passes into #18.12; Background takes #81.12 = 5 (4 ms) when

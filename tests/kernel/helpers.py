@@ -5,8 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from motiontool.aposs.driver import compile_source
-from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.protocol import LinkEvent
+from motiontool.controller.embedded import EmbeddedLink
 
 
 @dataclass

@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from motiontool.camcurve import Curve, FixPoint, StartStopPair, encode, interpolation_points, profile
-from motiontool.comms.embedded import EmbeddedLink
+from motiontool.controller.embedded import EmbeddedLink
 from motiontool.kernel.cam import decode_curve_array
 from motiontool.kernel.master import MasterConfig
 from tests.kernel.helpers import start

@@ -55,7 +55,7 @@ def test_the_cam_step_on_the_curve_commands_the_curve_value_of_every_tick():
     master cycles and all pieces of the stamping curve (DG 1435-1494, fix points only as with MCO ≥ 5.00)."""
     from motiontool.aposs.driver import compile_source
     from motiontool.camcurve import Curve, FixPoint
-    from motiontool.comms.embedded import EmbeddedLink
+    from motiontool.controller.embedded import EmbeddedLink
 
     points = (FixPoint(0, 0), FixPoint(1500, 1200, "T"), FixPoint(2500, 2400, "T"), FixPoint(4000, 3600))
     values = encode(Curve("stamping", 4000, points, interpolation=False, intervals=40))

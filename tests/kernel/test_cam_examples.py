@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from motiontool.camcurve import encode, interpolation_points, profile
-from motiontool.comms.embedded import EmbeddedLink
+from motiontool.controller.embedded import EmbeddedLink
 from motiontool.kernel.master import MasterConfig
 from motiontool.kernel.plant import PlantConfig
 from tests.camcurve.conftest import marker_curve, stamping_curve

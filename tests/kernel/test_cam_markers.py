@@ -13,7 +13,7 @@ import math
 import pytest
 
 from motiontool.camcurve import Curve, FixPoint, encode
-from motiontool.comms.embedded import EmbeddedLink
+from motiontool.controller.embedded import EmbeddedLink
 from motiontool.kernel.master import MasterConfig
 from motiontool.kernel.plant import PlantConfig
 from tests.kernel.helpers import start

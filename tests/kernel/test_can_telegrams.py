@@ -184,7 +184,7 @@ def test_motiontool_run_with_several_nodes_shares_one_can_bus(tmp_path):
 def test_a_new_cannr_takes_effect_at_the_next_power_up():
     """Decision K118: the controller keeps the node id it had when it was switched on (DG 10815-10819: CANNR
     "Defines the CAN-Node ID"; DG 10849-10853: a new CANBAUD needs SAVE GLBPARS and a restart)."""
-    from motiontool.comms.service import ControllerService
+    from motiontool.controller.service import ControllerService
 
     sim = bus({2: "SET CANNR 9\nSAVE GLBPARS\n"})
     sim.run_for(10)

@@ -5,8 +5,8 @@ import sys
 
 import pytest
 
-from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.protocol import LinkError
+from motiontool.controller.embedded import EmbeddedLink
 from motiontool.kernel.plant import PlantConfig
 
 from .helpers import run_source, start

@@ -186,8 +186,8 @@ def test_an_unknown_node_is_a_value_error_naming_it():
 def test_embedded_bus_gives_every_node_a_link_on_one_clock():
     """DG 2404: controllers "that all share the same network connection, (e.g. in a field bus)"; every node has its
     own link with the ordinary requests; advancing any node's link advances all nodes together."""
-    from motiontool.comms.bus import EmbeddedBus
     from motiontool.comms.protocol import LinkError
+    from motiontool.controller.bus import EmbeddedBus
 
     bus = EmbeddedBus([1, 4], master_node=1)
     seen = {1: [], 4: []}

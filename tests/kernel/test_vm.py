@@ -203,7 +203,7 @@ def test_gosub_nesting_deeper_than_ten_is_error_151():
 
 def test_dim_arrays_persist_between_programs_and_sizes_are_checked():
     """C:1024-1041: identity by position; a different size is error 176."""
-    from motiontool.comms.embedded import EmbeddedLink
+    from motiontool.controller.embedded import EmbeddedLink
 
     link = EmbeddedLink()
     first = run_source("DIM a[5]\na[3] = 33\n", 100, link=link)

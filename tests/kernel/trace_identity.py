@@ -16,8 +16,8 @@ from pathlib import Path
 
 from motiontool.aposs.driver import compile_source
 from motiontool.camcurve import Curve, FixPoint, encode
-from motiontool.comms.bus import EmbeddedBus
-from motiontool.comms.embedded import EmbeddedLink
+from motiontool.controller.bus import EmbeddedBus
+from motiontool.controller.embedded import EmbeddedLink
 from motiontool.kernel.master import MasterConfig
 from tests.kernel.test_cam_examples import MARKER, QC_PER_MU, STAMPING, run_example, start_conveyor
 from tests.test_samples import SAMPLES, parse_header

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from motiontool.aposs.driver import compile_source
-from motiontool.comms.embedded import EmbeddedLink
+from motiontool.controller.embedded import EmbeddedLink
 from motiontool.scope.acquisition import (
     FreeRun,
     Polling,

@@ -1,7 +1,7 @@
 """Scope numbers without Qt (issue 23 item 8): grouped values, times in s or ms, colours that are not reused,
 Tune runs on the time base of a TESTSETP set already shown (decisions S15, S32)."""
 
-from motiontool.comms.embedded import EmbeddedLink
+from motiontool.controller.embedded import EmbeddedLink
 from motiontool.scope.acquisition import list_testsetp, load_testsetp
 from motiontool.scope.curves import Curve, Scope
 from motiontool.scope.numbers import GROUP, time_text, time_ticks, value_text

@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from motiontool.comms.embedded import EmbeddedLink
+from motiontool.controller.embedded import EmbeddedLink
 from motiontool.scope import zbo
 from motiontool.scope.acquisition import FreeRun, Polling, SingleShot, default_group, new_curve
 from motiontool.scope.curves import Curve, Scope, Source

@@ -6,7 +6,7 @@ from __future__ import annotations
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QToolButton
 
-from motiontool.comms.dpl_program import dpl_link
+from motiontool.controller.dpl_program import dpl_link
 from motiontool.dpl.image import DplImage
 from motiontool.scope.ui import ScopeWindow
 from motiontool.ui.watch import WatchAddDialog

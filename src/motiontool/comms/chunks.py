@@ -11,7 +11,7 @@ answers every frame (ACK, RESULT chunk, BUSY or ERROR). It is stop-and-wait:
   telegram is never applied twice);
 - the chunks of one message carry their index (16 bit) and FIRST/LAST flags: a gap is an ERROR, after which the
   master sends the whole message again (its request id lets the controller side answer a request it already
-  applied from its cache, comms/drive/node.py);
+  applied from its cache, controller/drive/node.py);
 - the message's CRC-32 (comms/wire.py) is checked before anything in it is applied.
 """
 

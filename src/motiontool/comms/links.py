@@ -154,35 +154,22 @@ def scan_controllers(text: str | LinkSpec, ids: Iterable[int]) -> list[int]:
 # --- the built-in schemes ---------------------------------------------------------------------------------------
 MAX_REALTIME = 1000.0  # realtime=FACTOR: virtual time at most this much faster than real time
 
-
-def _open_sim(spec: LinkSpec) -> Link:
-    """`sim[,realtime=1]`: a simulated controller in this process (comms/embedded.py)."""
-    from motiontool.comms.embedded import EmbeddedLink
-
-    spec.check_options({"realtime"})
-    if spec.target:
-        raise LinkSpecError(f"link '{spec.text}': sim takes no target")
-    realtime = spec.option("realtime", 0.0, float, 0, MAX_REALTIME)
-    return EmbeddedLink(realtime_factor=realtime or None)
-
-
 _loaded = False
 
 
 def _load_builtin_schemes() -> None:
-    """Register sim and the wire schemes on first use (the FC and CANopen modules import pyserial/python-can, so
-    they load only when a link is opened)."""
+    """Register the wire schemes on first use (the FC and CANopen modules import pyserial/python-can, so they load
+    only when a link is opened). The simulators (`sim`, `apcsim`) are the controller's side: the composition root
+    registers them (controller/schemes.py), this package never imports them."""
     global _loaded
     if _loaded:
         return
     _loaded = True
-    if "sim" not in _SCHEMES:
-        register_link_scheme("sim", _open_sim, "sim", "the embedded simulated controller, the default")
     import_scheme_modules(BUILTIN_MODULES)
 
 
 # modules that register a link scheme on import (comms/canopen is optional: skipped while it does not exist)
-BUILTIN_MODULES = ("motiontool.comms.fc.link", "motiontool.comms.canopen.link", "motiontool.comms.dpl_program")
+BUILTIN_MODULES = ("motiontool.comms.fc.link", "motiontool.comms.canopen.link")
 
 
 def import_scheme_modules(modules) -> None:

@@ -4,8 +4,9 @@
 being the request's arguments (JSON values) and its first docstring line what the answer holds. Everything else
 follows it: the dispatch check `OPERATIONS`, the typed client (comms/client.py: one method per operation, same
 arguments), the table in docs/link-protocol.md (`operation_table`), and the services that implement it
-(comms/service.py for the MCO 305, comms/apc_service.py and dpl/host.py for the APC). tests/comms/test_operations.py
-keeps all of them in step. The wire format is not touched: a request is still `{op, args, id}`.
+(controller/service.py for the MCO 305, controller/apc_service.py and dpl/host.py for the APC).
+tests/comms/test_operations.py keeps all of them in step. The wire format is not touched: a request is still
+`{op, args, id}`.
 """
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 """The program side of a simulated APC controller behind a Link: downloads DPL program images, starts and stops
-the program, and exposes its variables to the watch. The APC Link service (``comms/apc_service.py``) hands it
+the program, and exposes its variables to the watch. The APC Link service (``controller/apc_service.py``) hands it
 the program operations (``op_download``, ``op_start``, ``op_break`` …) and calls `slice()` between POS samples.
 """
 

@@ -31,7 +31,7 @@ class ProgramStore:
         self.executed: set[int] = set()
         self.running: int | None = None
         # tick() has work only while the program state changes or a start input is watched: the service skips the
-        # call otherwise (comms/service.py)
+        # call otherwise (controller/service.py)
         self.waiting_for_input = False
         self._last_start_input = False
         self.seen_state = "idle"

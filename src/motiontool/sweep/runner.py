@@ -44,11 +44,11 @@ Row = tuple[tuple[str, ...], str]  # (measures as written, error or "")
 def open_controller(kind: str):
     """(link, advance(ms), close) of a fresh simulated controller in virtual time."""
     if kind == "dpl":  # as `motiontool run FILE.dpl`: a CTSync line, here of one drive
-        from motiontool.comms.dpl_program import dpl_line
+        from motiontool.controller.dpl_program import dpl_line
 
         bus = dpl_line(1)
         return bus.link(1), bus.advance, bus.close
-    from motiontool.comms.embedded import EmbeddedLink
+    from motiontool.controller.embedded import EmbeddedLink
 
     link = EmbeddedLink()
     return link, link.advance, link.close

@@ -12,7 +12,6 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.link import Link
 from motiontool.comms.links import open_link, scan_controllers
 
@@ -119,12 +118,8 @@ class ControllerRegistry:
         return iface.links[controller_id]
 
     def _open(self, config: InterfaceConfig, controller_id: int) -> Link:
-        if config.kind == "sim":
-            return EmbeddedLink(realtime_factor=self.realtime_factor)
-        if config.kind == APC_SIM:  # paced like the MCO simulator
-            from motiontool.comms.dpl_program import dpl_link
-
-            return dpl_link(realtime_factor=self.realtime_factor)
+        if config.kind in ("sim", APC_SIM):  # the simulators, paced at real time × the window's factor
+            return open_link(f"{config.kind},realtime={self.realtime_factor:g}")
         return open_link(config.spec(controller_id))
 
     def open_links(self, *, interface: str | None = None) -> list[tuple[int, Link]]:

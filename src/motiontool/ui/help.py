@@ -56,7 +56,7 @@ def parameter_page(key: str) -> str | None:
 
 def dictionary_entries() -> list[tuple[str, str]]:
     """(label, html) of every object of the controller's object dictionary (the SDO dictionary)."""
-    from motiontool.comms.canopen.eds import dictionary
+    from motiontool.controller.canopen.eds import dictionary
 
     entries = []
     for index, obj in sorted(dictionary().items()):

@@ -4,7 +4,7 @@ import pytest
 from PySide6.QtWidgets import QApplication
 
 from motiontool.cameditor.ui.window import CamEditor
-from motiontool.comms.embedded import EmbeddedLink
+from motiontool.controller.embedded import EmbeddedLink
 
 
 @pytest.fixture

@@ -7,13 +7,13 @@ import threading
 import pytest
 
 from motiontool.aposs.driver import compile_source
-from motiontool.comms.drive.listeners import open_listener
-from motiontool.comms.drive.simulator import VirtualDrive
 from motiontool.comms.fc import telegram as fc
 from motiontool.comms.fc.bus import BusSettings, FcBus
 from motiontool.comms.fc.link import FcLink, scan
 from motiontool.comms.links import open_link
 from motiontool.comms.protocol import ConnectionLost, LinkError
+from motiontool.controller.drive.listeners import open_listener
+from motiontool.controller.drive.simulator import VirtualDrive
 from motiontool.paramdb import database
 
 pytestmark = pytest.mark.wire
@@ -225,7 +225,7 @@ class MeddlingLine:
     def __init__(self, meddle):
         import tty
 
-        from motiontool.comms.fc.server import FcSlave
+        from motiontool.controller.fc.server import FcSlave
 
         self.drive = VirtualDrive([1], clock="virtual")
         self.slave = FcSlave(self.drive)

@@ -9,8 +9,8 @@ from PySide6.QtWidgets import QToolButton
 
 from motiontool.aposs.driver import compile_source
 from motiontool.comms.canopen.link import CanopenLink
-from motiontool.comms.canopen.server import CanopenDrive
-from motiontool.comms.drive.simulator import VirtualDrive
+from motiontool.controller.canopen.server import CanopenDrive
+from motiontool.controller.drive.simulator import VirtualDrive
 from motiontool.scope.ui import ScopeWindow
 
 _names = itertools.count(1)

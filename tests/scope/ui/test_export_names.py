@@ -1,7 +1,7 @@
 """Export adds the chosen format's extension to a name typed without one (issue 23 item 9), typed into Qt's own
 file dialog as a user does."""
 
-from motiontool.comms.embedded import EmbeddedLink
+from motiontool.controller.embedded import EmbeddedLink
 from motiontool.scope.ui import ScopeWindow
 from tests.modal import answering
 from tests.scope.ui.test_scope_window import POSA, click, run_for, start_program

@@ -13,7 +13,7 @@ import pytest
 from PySide6.QtCore import Qt
 from PySide6.QtGui import QImage, QPainter
 
-from motiontool.comms.embedded import EmbeddedLink
+from motiontool.controller.embedded import EmbeddedLink
 from motiontool.scope.numbers import GROUP
 from motiontool.scope.ui import ScopeWindow
 from motiontool.scope.ui.curve_list import MAX

@@ -13,7 +13,7 @@ from PySide6.QtCore import QSettings, Qt
 from PySide6.QtWidgets import QApplication, QMessageBox, QToolButton
 
 from motiontool.aposs.driver import compile_source
-from motiontool.comms.embedded import EmbeddedLink
+from motiontool.controller.embedded import EmbeddedLink
 from motiontool.scope.curves import smooth
 from motiontool.scope.derived import DerivedSpec, compute
 from motiontool.scope.numbers import GROUP

@@ -2,7 +2,7 @@
 
 import pytest
 
-from motiontool.comms.embedded import EmbeddedLink
+from motiontool.controller.embedded import EmbeddedLink
 from motiontool.scope.ui import ScopeWindow, open_scope_file
 from motiontool.scope.ui.dialogs import WHOLE_VALUE, AddCurveDialog, PropertiesDialog
 

@@ -116,7 +116,7 @@ def test_save_without_data_still_writes_a_template(window, qtbot, tmp_path):
 
 # --- cursors and the mouse (issue 16, 2k) ------------------------------------------------------------------
 def recorded_scope(qtbot):
-    from motiontool.comms.embedded import EmbeddedLink
+    from motiontool.controller.embedded import EmbeddedLink
     from tests.scope.ui.test_scope_window import run_for
 
     link = EmbeddedLink()
@@ -163,7 +163,7 @@ def test_cursors_move_with_the_right_button_and_the_left_button_zooms_past_them(
 def test_a_second_testsetp_run_lands_over_the_first_not_far_beside_it(qtbot):
     """ide-spec S23: two runs of a TESTSETP program and their difference; the second run used to land at its
     controller time, so Zoom Reset showed two slivers far apart."""
-    from motiontool.comms.embedded import EmbeddedLink
+    from motiontool.controller.embedded import EmbeddedLink
     from tests.scope.test_acquisition import TESTSETP, start
 
     link = EmbeddedLink()

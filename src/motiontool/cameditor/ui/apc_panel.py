@@ -364,7 +364,7 @@ class ApcPanel(QWidget):
     def test_run(self) -> float | None:
         """Run the table on the simulated APC (a Link, virtual time): the measured CAM reference is drawn over
         the table, and the largest difference is reported (0: the simulator does what the editor shows)."""
-        from motiontool.comms.dpl_program import dpl_link
+        from motiontool.comms.links import open_link
         from motiontool.dpl.image import DplImage
 
         table, rpm, cpr = self.table, self.master_rpm.value(), self.counts_per_rev.value()
@@ -374,7 +374,7 @@ class ApcPanel(QWidget):
             return None
         duration = min(120_000, table.master_length * self.cycles.value() // step + 2)
         rows: list[list[int]] = []
-        link = dpl_link()
+        link = open_link("apcsim")                               # virtual time: `advance` moves it
         link.subscribe(lambda e: rows.extend(e.data["values"]) if e.kind == "samples" else None)
         try:
             link.download(DplImage("cam_test.dpl", table_program(table, master_rpm=rpm, counts_per_rev=cpr))

@@ -1,3 +1,3 @@
-"""CANopen for motiontool (docs/protocols/canopen.md): the drive's object dictionary as an EDS (eds.py), the objects
-that carry the link's services (objects.py), the CANopen link on python-canopen's RemoteNode and the virtual drive's
-LocalNodes behind an slcan TCP server."""
+"""The master's side of CANopen (docs/protocols/canopen.md): the objects that carry the link's services and the
+EDS the drive ships (objects.py), the CANopen link on python-canopen's RemoteNode (link.py) with its slcan TCP bus
+(slcan.py) and Free Run PDOs (freerun.py). The drive's side is controller/canopen/."""

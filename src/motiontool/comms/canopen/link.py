@@ -37,7 +37,7 @@ import can
 import canopen
 from canopen.sdo import SdoAbortedError, SdoCommunicationError
 
-from motiontool.comms.canopen import eds, objects
+from motiontool.comms.canopen import objects
 from motiontool.comms.canopen.freerun import PdoStream
 from motiontool.comms.canopen.slcan import SlcanSocketBus
 from motiontool.comms.canopen.watch import TransportWatch, answer_reader, sent_at
@@ -103,7 +103,7 @@ class CanopenLink(RemoteLink):
         self._saved_heartbeat: bytes | None = None    # 0x1017 before the link set it (restored on close)
         self._started_from: int | None = None         # the NMT state Free Run's NMT Start left (restored on close)
         self.sdo_timeout_s = sdo_timeout_s
-        self.od = canopen.import_od(str(eds_path or eds.eds_path()), node)
+        self.od = canopen.import_od(str(eds_path or objects.eds_path()), node)
         self._sdo_lock = threading.RLock()
         self._last_beat: float | None = None
         self._state: int | None = None

@@ -15,7 +15,7 @@ from typing import Any
 
 from motiontool.comms.link import Link
 from motiontool.comms.protocol import LinkError, Request
-from motiontool.comms.service import ControllerService
+from motiontool.controller.service import ControllerService
 from motiontool.kernel.master import MasterConfig
 from motiontool.kernel.plant import PlantConfig
 from motiontool.kernel.simulation import Simulation

@@ -1,28 +1,35 @@
 """The drive's object dictionary as an EDS (CiA 306, the INI text every CANopen tool reads), written from
-kernel/objdict.py and the service objects (objects.py). `resources/eds/mco305.eds` is this text; a test keeps them
-equal. Regenerate it with ``python -m motiontool.comms.canopen.eds > resources/eds/mco305.eds``.
+kernel/objdict.py and the service objects (comms/canopen/objects.py). `resources/eds/mco305.eds` is this text; a
+test keeps them equal. Regenerate it with ``python -m motiontool.controller.canopen.eds > resources/eds/mco305.eds``.
 """
 
 from __future__ import annotations
 
 import sys
 
-from motiontool.comms.canopen.objects import SERVICE_OBJECTS
+from motiontool.comms.canopen.objects import LINK_MESSAGE, PROGRAM_CONTROL, PROGRAM_IMAGE, STORE_EDS
 from motiontool.kernel import canpdo, objdict
-from motiontool.resources import resources_path
+from motiontool.kernel.objdict import Entry, Obj
 
-EDS_PATH = ("eds", "mco305.eds")
 OBJECT_TYPES = {"VAR": 0x7, "ARRAY": 0x8, "RECORD": 0x9}
 MANDATORY = (0x1000, 0x1001, 0x1018)
+
+
+def _var(index: int, name: str, datatype: str, access: str) -> Obj:
+    return Obj(index, name, "VAR", {0: Entry(index, 0, name, datatype, access, mappable=False)})
+
+
+SERVICE_OBJECTS: dict[int, Obj] = {
+    STORE_EDS: _var(STORE_EDS, "Store EDS", "DOMAIN", "ro"),
+    LINK_MESSAGE: _var(LINK_MESSAGE, "Link message", "DOMAIN", "rw"),
+    PROGRAM_IMAGE: _var(PROGRAM_IMAGE, "Program image", "DOMAIN", "wo"),
+    PROGRAM_CONTROL: _var(PROGRAM_CONTROL, "Program control", "INTEGER32", "rw"),
+}
 
 
 def dictionary() -> dict[int, objdict.Obj]:
     """Every object of the drive, by index."""
     return dict(sorted({**objdict.OBJECTS, **SERVICE_OBJECTS}.items()))
-
-
-def eds_path():
-    return resources_path(*EDS_PATH)
 
 
 def _value(value) -> str:

@@ -21,8 +21,8 @@ from collections import OrderedDict, deque
 from typing import Any
 
 from motiontool.comms.protocol import LinkEvent, Request, Response
-from motiontool.comms.service import ControllerService
 from motiontool.comms.wire import DAMAGED_REQUEST, WireError, decode_request, encode_response
+from motiontool.controller.service import ControllerService
 
 EVENT_LIMIT = 4096       # events kept for a master that does not poll
 EVENTS_PER_ANSWER = 64   # at most this many in one `events` answer (the master asks again when `more`)

@@ -1,5 +1,6 @@
 """One simulated controller as a CANopen slave: a python-canopen LocalNode whose SDO server reads and writes the
-controller's object dictionary (kernel/objdict.py) and the service objects (objects.py) under the drive's lock.
+controller's object dictionary (kernel/objdict.py) and the service objects (comms/canopen/objects.py) under the
+drive's lock.
 
 NMT, heartbeat and PDOs are the controller's own (kernel/canport.py, kernel/canpdo.py), reaching the bus through
 the drive's bridge (server.py): the LocalNode here is the SDO server only, so the dictionary has one owner.
@@ -13,8 +14,9 @@ import canopen
 from canopen.sdo import SdoAbortedError
 
 from motiontool.comms.canopen import objects
-from motiontool.comms.canopen.sdoblock import BlockSdoServer
 from motiontool.comms.protocol import Request
+from motiontool.controller.canopen.eds import SERVICE_OBJECTS
+from motiontool.controller.canopen.sdoblock import BlockSdoServer
 from motiontool.kernel import objdict
 from motiontool.kernel.canport import STOPPED
 
@@ -38,7 +40,7 @@ def _check_length(data: bytes, datatype: str) -> None:
 
 
 class ControllerNode(canopen.LocalNode):
-    """`drive_node` is the drive's DriveNode (comms/drive/node.py): its `service` (a ControllerService) and its
+    """`drive_node` is the drive's DriveNode (controller/drive/node.py): its `service` (a ControllerService) and its
     `handle_message(bytes) -> bytes` for the link messages of 0x5F00."""
 
     def __init__(self, node_id: int, od: canopen.ObjectDictionary, drive, drive_node, eds_text: str):
@@ -89,7 +91,7 @@ class ControllerNode(canopen.LocalNode):
 
     # --- SDO server callbacks ----------------------------------------------------------------------------
     def get_data(self, index: int, subindex: int, check_readable: bool = False, channel: int = 1) -> bytes:
-        if index in objects.SERVICE_OBJECTS:
+        if index in SERVICE_OBJECTS:
             return self._service_read(index, channel)
         with self.drive.lock:
             try:
@@ -100,7 +102,7 @@ class ControllerNode(canopen.LocalNode):
 
     def set_data(self, index: int, subindex: int, data: bytes, check_writable: bool = False,
                  channel: int = 1) -> None:
-        if index in objects.SERVICE_OBJECTS:
+        if index in SERVICE_OBJECTS:
             self._service_write(index, bytes(data), channel)
             return
         with self.drive.lock:

@@ -19,7 +19,7 @@ from typing import Any
 
 from motiontool.comms.link import Link
 from motiontool.comms.protocol import LinkError, LinkEvent, Request
-from motiontool.comms.service import ControllerService
+from motiontool.controller.service import ControllerService
 from motiontool.kernel.controller import Controller
 from motiontool.kernel.master import MasterConfig
 from motiontool.kernel.plant import PlantConfig
@@ -35,7 +35,7 @@ class EmbeddedLink(Link):
 
     def __init__(self, plant: PlantConfig | None = None, realtime_factor: float | None = None,
                  master: MasterConfig | None = None, *, service=None):
-        """`service` replaces the MCO 305 (e.g. comms.apc_service.ApcService for an APC); it needs
+        """`service` replaces the MCO 305 (e.g. controller.apc_service.ApcService for an APC); it needs
         handle(request), tick() (one ms), listeners and controller.time_ms."""
         super().__init__()
         self.service = service or ControllerService(Controller(plant, master=master))

@@ -9,10 +9,10 @@ from collections.abc import Callable
 from typing import Any
 
 from motiontool.aposs.image import ImageError, ProgramImage
-from motiontool.comms import scope_recording
 from motiontool.comms.operations import OPERATIONS
 from motiontool.comms.protocol import PROTOCOL_VERSION, LinkEvent, Request, Response, Status
-from motiontool.comms.signal_catalogue import mco_signals
+from motiontool.controller import scope_recording
+from motiontool.controller.signal_catalogue import mco_signals
 from motiontool.kernel import fc300
 from motiontool.kernel.arrays import MAX_ARRAY_ELEMENTS
 from motiontool.kernel.controller import Controller, Event

@@ -19,12 +19,13 @@ import threading
 import can
 import canopen
 
-from motiontool.comms.canopen import eds
-from motiontool.comms.canopen.hub import HubBus
-from motiontool.comms.canopen.node import ControllerNode
-from motiontool.comms.canopen.slcan import SlcanServer, open_local_bus
-from motiontool.comms.drive.listeners import exposed, listen_port, warn_exposed
+from motiontool.comms.canopen.objects import eds_path
 from motiontool.comms.protocol import LinkError
+from motiontool.controller.canopen import eds
+from motiontool.controller.canopen.hub import HubBus
+from motiontool.controller.canopen.node import ControllerNode
+from motiontool.controller.canopen.slcan_server import SlcanServer, open_local_bus
+from motiontool.controller.drive.listeners import exposed, listen_port, warn_exposed
 from motiontool.kernel.canbus import CanFrame
 
 _channels = itertools.count(1)
@@ -48,7 +49,7 @@ class CanopenDrive:
         self.channel = channel
         simulation = drive.simulation
         text = eds.eds_text()
-        od = canopen.import_od(str(eds.eds_path()))
+        od = canopen.import_od(str(eds_path()))
         wanted = {0, *(0x600 + n for n in drive.nodes), *(0x100 + n for n in drive.nodes)}  # NMT, SDO 1 and 2
         self.network = canopen.Network(open_local_bus(interface, channel, wanted))
         self.network.notifier = can.Notifier(self.network.bus, self.network.listeners, 0.5)
@@ -146,7 +147,7 @@ class SlcanListener:
 
 
 def _register() -> None:
-    from motiontool.comms.drive.listeners import register_listener_scheme
+    from motiontool.controller.drive.listeners import register_listener_scheme
 
     register_listener_scheme("canopen", SlcanListener, "canopen:slcan:socket://127.0.0.1:PORT",
                              "CANopen nodes behind an slcan (Lawicel) TCP server")

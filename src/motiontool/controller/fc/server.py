@@ -23,7 +23,6 @@ from collections.abc import Callable
 
 from motiontool.cliargs import shown
 from motiontool.comms.chunks import SlaveChannel
-from motiontool.comms.drive.listeners import exposed, listen_port, refuse, url_host, warn_exposed
 from motiontool.comms.fc.extension import MAX_CHUNK, frame_telegram, is_frame, telegram_frame
 from motiontool.comms.fc.telegram import (
     AK_NONE,
@@ -45,6 +44,7 @@ from motiontool.comms.fc.telegram import (
 from motiontool.comms.fc.values import from_pwe, to_pwe
 from motiontool.comms.links import LinkSpec
 from motiontool.comms.protocol import LinkError
+from motiontool.controller.drive.listeners import exposed, listen_port, refuse, url_host, warn_exposed
 from motiontool.kernel import fc300
 from motiontool.kernel.errors import ControllerError
 from motiontool.kernel.fc300_table import FC_PARAMETERS
@@ -308,7 +308,7 @@ def open_fc_listener(spec: LinkSpec, drive):
 
 
 def _register() -> None:
-    from motiontool.comms.drive.listeners import register_listener_scheme
+    from motiontool.controller.drive.listeners import register_listener_scheme
 
     register_listener_scheme("fc", open_fc_listener, "fc:socket://HOST:PORT | fc:pty [,baud=N]",
                              "the nodes on an FC bus behind a TCP serial converter or a pseudo-terminal")

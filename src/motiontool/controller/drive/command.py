@@ -18,9 +18,9 @@ from pathlib import Path
 from typing import TextIO
 
 from motiontool.cliargs import NODE_ID, node_id, number_option
-from motiontool.comms.drive.listeners import open_listener
-from motiontool.comms.drive.simulator import CLOCKS, REACTIONS, VirtualDrive
 from motiontool.comms.protocol import LinkError
+from motiontool.controller.drive.listeners import open_listener
+from motiontool.controller.drive.simulator import CLOCKS, REACTIONS, VirtualDrive
 
 _NODE = re.compile(r"^\s*([^:]*?)\s*(?::(.+))?$")  # the id is read by cliargs.node_id (ASCII digits, 1..32)
 MAX_SPEED = 1000.0          # --speed: a realtime factor beyond this is no longer real time
@@ -41,7 +41,7 @@ class DriveOptions:
 
 
 def add_parser(sub) -> None:
-    from motiontool.comms.drive.listeners import listener_schemes
+    from motiontool.controller.drive.listeners import listener_schemes
 
     schemes = "; ".join(f"{s.syntax} ({s.help})" for s in listener_schemes())
     p = sub.add_parser("drive", help="serve simulated controllers to wire links (a virtual drive)",

@@ -26,10 +26,10 @@ from typing import Any
 from motiontool.apc.clock import PosClock
 from motiontool.apc.drive import ApcDrive
 from motiontool.apc.readpars import parameter_number
-from motiontool.comms.embedded import EmbeddedLink
 from motiontool.comms.operations import OPERATIONS
 from motiontool.comms.protocol import PROTOCOL_VERSION, LinkEvent, Request, Response, Status
-from motiontool.comms.signal_catalogue import apc_signals
+from motiontool.controller.embedded import EmbeddedLink
+from motiontool.controller.signal_catalogue import apc_signals
 
 PROGRAM_OPS = ("download", "start", "break", "continue", "list_programs", "delete_program", "set_autostart",
                "power_on", "set_breakpoints", "step", "read_variables", "write_variable", "restore_arrays",

@@ -3,7 +3,7 @@
 `motiontool drive --listen SPEC` parses SPEC with the link syntax (comms/links.py) and calls the factory
 registered for its scheme with the spec and the running `VirtualDrive`. A factory returns a `Listener`: it serves
 in its own threads, `url` is the link spec a master passes to `--link` (printed as ``listening on URL``), and
-`close()` stops it. The FC protocol registers ``fc`` (comms/fc/server.py); another protocol registers its own
+`close()` stops it. The FC protocol registers ``fc`` (controller/fc/server.py); another protocol registers its own
 (``canopen:slcan:socket://…``) the same way.
 """
 
@@ -35,7 +35,7 @@ class ListenerScheme:
 
 _SCHEMES: dict[str, ListenerScheme] = {}
 # modules that register a listener scheme on import (a missing optional module is skipped)
-BUILTIN_MODULES = ("motiontool.comms.fc.server", "motiontool.comms.canopen.server")
+BUILTIN_MODULES = ("motiontool.controller.fc.server", "motiontool.controller.canopen.server")
 
 
 def register_listener_scheme(name: str, factory: Callable[[LinkSpec, object], Listener], syntax: str,

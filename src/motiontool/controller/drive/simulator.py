@@ -20,9 +20,9 @@ import threading
 import time
 
 from motiontool.aposs.image import ProgramImage
-from motiontool.comms.drive.node import DriveNode
 from motiontool.comms.protocol import LinkEvent
-from motiontool.comms.service import ControllerService
+from motiontool.controller.drive.node import DriveNode
+from motiontool.controller.service import ControllerService
 from motiontool.kernel.master import MasterConfig
 from motiontool.kernel.simulation import Simulation
 

@@ -4,10 +4,9 @@ array editor. `dpl_link()` is the embedded APC controller the CLI and the IDE ru
 
 from __future__ import annotations
 
-from motiontool.comms.apc_service import ApcService
-from motiontool.comms.embedded import EmbeddedLink
-from motiontool.comms.links import MAX_REALTIME, LinkSpec, register_link_scheme
-from motiontool.comms.protocol import LinkError, LinkEvent
+from motiontool.comms.protocol import LinkEvent
+from motiontool.controller.apc_service import ApcService
+from motiontool.controller.embedded import EmbeddedLink
 from motiontool.dpl.host import DplHost
 
 
@@ -44,21 +43,10 @@ def dpl_line(node_count: int, *, four_wire: bool = False):
     """A CTSync line of `node_count` simulated APCs running DPL programs, one Link per node (1..N), one clock;
     2-wire (8 nodes at most) unless `four_wire` (16, L2078)."""
     from motiontool.apc.drive import ApcDrive
-    from motiontool.comms.apc_bus import ApcLineBus
+    from motiontool.controller.apc_bus import ApcLineBus
 
     bus = ApcLineBus([ApcDrive() for _ in range(node_count)], four_wire=four_wire)
     for link in bus.links.values():
         link.service.attach_program(DplProgram(link.service))
     return bus
 
-
-def _open_apcsim(spec: LinkSpec) -> EmbeddedLink:
-    """`apcsim[#1][,realtime=F]`: the embedded simulated APC with its DPL host (one controller, number 1)."""
-    spec.check_options({"realtime"})
-    if spec.target or spec.node not in (None, 1):
-        raise LinkError(f"link '{spec.text}': the APC simulator is one controller (apcsim or apcsim#1)")
-    return dpl_link(realtime_factor=spec.option("realtime", None, float, 0, MAX_REALTIME) or None)  # 0: virtual
-
-
-register_link_scheme("apcsim", _open_apcsim, "apcsim[,realtime=F]", "the embedded simulated APC that runs DPL programs",
-                     scan=lambda spec, ids: [n for n in ids if n == 1])

@@ -13,8 +13,8 @@ from collections.abc import Iterable
 from motiontool.apc.clock import PosClock
 from motiontool.apc.ctsync import CTSyncLine
 from motiontool.apc.drive import ApcDrive
-from motiontool.comms.apc_service import ApcService
-from motiontool.comms.bus import NodeLink
+from motiontool.controller.apc_service import ApcService
+from motiontool.controller.bus import NodeLink
 
 
 class ApcLineBus:
