@@ -332,10 +332,10 @@ def phase_times(text: str, name: str, repeat: int) -> dict[str, float]:
     try:
         from motiontool.aposs.check import check_program
         from motiontool.aposs.codegen import CodeGen
-        from motiontool.aposs.diagnostics import DiagnosticSink
         from motiontool.aposs.driver import _parameter_lookup, system_include_dirs
         from motiontool.aposs.parser import parse
         from motiontool.aposs.preprocess import Preprocessor
+        from motiontool.language.diagnostics import DiagnosticSink
 
         times: dict[str, float] = {}
         times["preprocess"] = best_of(repeat, lambda: Preprocessor(system_include_dirs()).run_text(text, name))

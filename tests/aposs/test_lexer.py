@@ -2,9 +2,9 @@
 
 import pytest
 
-from motiontool.aposs.diagnostics import CompileError, Diagnostic
 from motiontool.aposs.driver import compile_source
 from motiontool.aposs.lexer import DIRECTIVE, FLOAT, IDENT, INT, NEWLINE, STRING, tokenize
+from motiontool.language.diagnostics import CompileError, Diagnostic
 from tests.kernel.helpers import run_source
 
 

@@ -4,9 +4,9 @@ from pathlib import Path
 
 import pytest
 
-from motiontool.aposs.diagnostics import CompileError
 from motiontool.aposs.lexer import NEWLINE
 from motiontool.aposs.preprocess import preprocess_file, preprocess_text
+from motiontool.language.diagnostics import CompileError
 
 
 def text_of(source: str, **kw) -> list[str]:

@@ -10,12 +10,12 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from motiontool.aposs.diagnostics import Diagnostic
 from motiontool.aposs.driver import compile_source
 from motiontool.cli import main
 from motiontool.dpl import ast
 from motiontool.dpl.driver import check_source
 from motiontool.dpl.lexer import PARAM, tokenize
+from motiontool.language.diagnostics import Diagnostic
 from tests.dpl.manual import PROGRAMS, seed_code
 
 

@@ -6,14 +6,10 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
-from motiontool.aposs.diagnostics import Location
+from motiontool.language.ast import Node  # the shared base: loc, the place of its first token
+from motiontool.language.diagnostics import Location
 
 LONG, DOUBLE = "long", "double"
-
-
-@dataclass(eq=False)
-class Node:
-    loc: Location
 
 
 # --- expressions ------------------------------------------------------------------------------------

@@ -7,7 +7,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from motiontool.aposs import ast
-from motiontool.aposs.diagnostics import DiagnosticSink, Location
+from motiontool.language.diagnostics import DiagnosticSink, Location
 
 
 @dataclass

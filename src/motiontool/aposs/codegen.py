@@ -13,9 +13,9 @@ from motiontool.aposs import ast, image, semantics
 from motiontool.aposs.ast import DOUBLE, LONG
 from motiontool.aposs.codegen_expr import ExpressionCode
 from motiontool.aposs.constexpr import fold_int
-from motiontool.aposs.diagnostics import Cancelled, CompileError, DiagnosticSink, Location
 from motiontool.aposs.image import BINOP_OF, PSEUDO_ARRAYS, SELECTOR_CODES, Op
 from motiontool.aposs.verify import MAX_VARIABLE_ELEMENTS
+from motiontool.language.diagnostics import Cancelled, CompileError, DiagnosticSink, Location
 
 
 @dataclass

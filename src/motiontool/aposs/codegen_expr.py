@@ -13,9 +13,9 @@ from typing import TYPE_CHECKING
 from motiontool.aposs import ast, image, semantics
 from motiontool.aposs.ast import DOUBLE, LONG
 from motiontool.aposs.constexpr import NotConstant, fold, fold_int
-from motiontool.aposs.diagnostics import CompileError, DiagnosticSink, Location
 from motiontool.aposs.image import BINOP_OF, MATH_FUNCTIONS, PSEUDO_ARRAYS, SELECTOR_CODES, Op
 from motiontool.aposs.simulated import unserved_note
+from motiontool.language.diagnostics import CompileError, DiagnosticSink, Location
 
 if TYPE_CHECKING:
     from motiontool.aposs.codegen import Symbol

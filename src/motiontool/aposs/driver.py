@@ -13,10 +13,10 @@ from typing import TextIO
 
 from motiontool.aposs.check import check_program
 from motiontool.aposs.codegen import CodeGen
-from motiontool.aposs.diagnostics import CompileError, Diagnostic, DiagnosticSink
 from motiontool.aposs.image import ProgramImage
 from motiontool.aposs.parser import parse
 from motiontool.aposs.preprocess import Preprocessor
+from motiontool.language.diagnostics import CompileError, Diagnostic, DiagnosticSink
 from motiontool.resources import resources_path
 
 

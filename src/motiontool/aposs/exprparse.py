@@ -12,8 +12,8 @@ import re
 
 from motiontool.aposs import ast
 from motiontool.aposs.commands import ArgSpec, Command, CommandTable
-from motiontool.aposs.diagnostics import CompileError
 from motiontool.aposs.lexer import EOF, FLOAT, IDENT, INT, NEWLINE, OP, STRING, TERMINAL, Token
+from motiontool.language.diagnostics import CompileError
 
 _BINARY_LEVELS: list[tuple[str, ...]] = [
     ("OR",), ("AND",), ("|",), ("^",), ("&",), ("==", "!="), ("<", "<=", ">", ">="), ("<<", ">>"),

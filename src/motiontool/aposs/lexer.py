@@ -8,36 +8,21 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from typing import Any
 
-from motiontool.aposs.diagnostics import CompileError, Diagnostic, Location
+from motiontool.language import tokens
+from motiontool.language.diagnostics import CompileError, Diagnostic, Location
+from motiontool.language.tokens import EOF, FLOAT, IDENT, INT, NEWLINE, OP, STRING, lookalike_hint
 
-IDENT, INT, FLOAT, STRING, OP, NEWLINE, DIRECTIVE, EOF, TERMINAL = (
-    "IDENT", "INT", "FLOAT", "STRING", "OP", "NEWLINE", "DIRECTIVE", "EOF", "TERMINAL")
+DIRECTIVE, TERMINAL = "DIRECTIVE", "TERMINAL"
 PRAGMA = "PRAGMA"  # made by the preprocessor from #pragma for the parser: value = "IMPLICIT" | "NOIMPLICIT"
 
 
-@dataclass(slots=True)
-class Token:
-    kind: str
-    text: str           # as written (for IDENT: original case)
-    # int / float / str / upper-case identifier / None, as the kind says; Any because every use has checked
-    # the kind (IDENT, INT, ...) first, which a type checker cannot follow to the value
-    value: Any
-    loc: Location
+@dataclass(slots=True, repr=False)  # the shared repr, without the macro fields
+class Token(tokens.Token):
     # Macro names this token came out of (no re-expansion inside its own expansion) and
     # the chain of macro uses that produced it, shown as notes in diagnostics.
     hide: frozenset[str] = frozenset()
     origin: tuple[tuple[str, Location], ...] = ()
-
-    def is_op(self, *ops: str) -> bool:
-        return self.kind == OP and self.text in ops
-
-    def is_word(self, *words: str) -> bool:
-        return self.kind == IDENT and self.value in words
-
-    def __repr__(self) -> str:
-        return f"Token({self.kind}, {self.text!r}, {self.loc})"
 
 
 # Blanks before a token are part of its match (half as many matches); the token starts at its group.
@@ -59,11 +44,6 @@ _TOKEN = re.compile(r"""
 """, re.VERBOSE | re.ASCII)  # ASCII: \d must not take other scripts' digits ("٥" is not 5 in APOSS)
 _DIRECTIVE = re.compile(r"[ \t\f\r]*#((?:[^\n\\]|\\\r?\n|\\(?!\r?\n))*)")
 _BAD_NUMBER_TAIL = re.compile(r"[A-Za-z0-9_]")
-_NAMES = {"\u2013": "EN DASH", "\u2014": "EM DASH", "\u201c": "LEFT DOUBLE QUOTATION MARK",
-          "\u201d": "RIGHT DOUBLE QUOTATION MARK", "\u2018": "LEFT SINGLE QUOTATION MARK",
-          "\u2019": "RIGHT SINGLE QUOTATION MARK", "\u00a0": "NO-BREAK SPACE"}
-_HINTS = {"\u2013": "-", "\u2014": "-", "\u201c": '"', "\u201d": '"', "\u2018": "'", "\u2019": "'",
-          "\u00a0": " "}
 
 
 # The FC 300 parameter number right after these is read in decimal also with a leading 0: CR 4047 writes par. 0-25
@@ -106,13 +86,12 @@ def tokenize(text: str, file: str, line: int = 1, col: int = 1,
             while text[pos] in " \t\f\r":  # the blanks before the offending character
                 pos += 1
             ch = text[pos]
-            name = _NAMES.get(ch)
             if ch == '"':
                 raise CompileError("missing closing '\"' of the string", loc_at(pos))
             if ch == "'":
                 raise CompileError("character constant must be one character in apostrophes, e.g. 'A'",
                                    loc_at(pos))
-            detail = f" (U+{ord(ch):04X} {name}); write '{_HINTS[ch]}'" if name else ""
+            detail = lookalike_hint(ch)
             if ch == "/":
                 detail = " (APOSS divides with '%')"
             raise CompileError(f"unexpected character '{ch}'{detail}", loc_at(pos))

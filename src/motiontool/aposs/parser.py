@@ -10,10 +10,10 @@ from __future__ import annotations
 from motiontool.aposs import ast, constexpr, semantics
 from motiontool.aposs.commands import CommandTable, command_table
 from motiontool.aposs.constexpr import fold_int
-from motiontool.aposs.diagnostics import Cancelled, CompileError, Location
 from motiontool.aposs.exprparse import ExpressionParser, describe
 from motiontool.aposs.lexer import EOF, IDENT, NEWLINE, PRAGMA, Token
 from motiontool.aposs.shadow import shadowed_commands, subprogram_name_warning
+from motiontool.language.diagnostics import Cancelled, CompileError, Location
 
 _POSITION_KINDS = ("APOS", "IPOS", "MAPOS", "MCPOS", "MIPOS")
 _VALUE_KINDS = ("INT", "PERIOD", "TIME", "COMBIT", "STATBIT", "PARAM", "CANINPUT")

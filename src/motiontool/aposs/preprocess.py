@@ -10,10 +10,11 @@ import time
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-from motiontool.aposs.diagnostics import Cancelled, CompileError, Diagnostic, Location
 from motiontool.aposs.lexer import DIRECTIVE, EOF, IDENT, INT, NEWLINE, OP, PRAGMA, STRING, Token, tokenize
 from motiontool.aposs.parser import evaluate_tokens
-from motiontool.fileio import MiB, read_bytes
+from motiontool.fileio import MiB
+from motiontool.language import source
+from motiontool.language.diagnostics import Cancelled, CompileError, Diagnostic, Location
 
 MAX_INCLUDE_DEPTH = 32
 # Macro expansion is bounded, so a small file cannot stall or exhaust the compiler (20 doubling #defines are 2^20
@@ -57,13 +58,8 @@ class PreprocessResult:
 
 
 def read_source(path: Path) -> str:
-    """Read a program file: UTF-8, falling back to Latin-1 (old APOSS files), line ends normalised."""
-    data = read_bytes(path, MAX_SOURCE_BYTES, "program file")
-    try:
-        text = data.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        text = data.decode("latin-1")
-    return text.replace("\r\n", "\n").replace("\r", "\n")
+    """Read a program or include file: UTF-8, falling back to Latin-1 (old APOSS files), line ends normalised."""
+    return source.read_source(path, MAX_SOURCE_BYTES, "program file")
 
 
 class Preprocessor:

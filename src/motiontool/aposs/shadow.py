@@ -12,8 +12,8 @@ warning says so.
 from __future__ import annotations
 
 from motiontool.aposs.commands import CommandTable
-from motiontool.aposs.diagnostics import Diagnostic
 from motiontool.aposs.lexer import IDENT, NEWLINE, Token
+from motiontool.language.diagnostics import Diagnostic
 
 _VALUE_KINDS = ("command", "sysvar", "function")   # keywords (IF, BREAK …) never name a variable
 

@@ -5,12 +5,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from motiontool.aposs.diagnostics import Location
-
-
-@dataclass(eq=False)
-class Node:
-    loc: Location
+from motiontool.language.ast import Node  # the shared base: loc, the place of its first token
+from motiontool.language.diagnostics import Location
 
 
 # --- expressions ------------------------------------------------------------------------------------------------

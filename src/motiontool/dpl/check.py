@@ -7,10 +7,10 @@ import difflib
 import re
 from dataclasses import dataclass, field
 
-from motiontool.aposs.diagnostics import DiagnosticSink, Location
 from motiontool.dpl import ast
 from motiontool.dpl.definitions import definitions
 from motiontool.dpl.functions import Function, function_table
+from motiontool.language.diagnostics import DiagnosticSink, Location
 
 RUN_TASKS = ("Initial", "Background", "Pos0", "Pos1")
 POS_TASKS = ("Pos0", "Pos1")

@@ -11,11 +11,11 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from motiontool.aposs.diagnostics import Location
 from motiontool.dpl import ast
 from motiontool.dpl.check import Symbols, fold, register_parameter
 from motiontool.dpl.definitions import definitions
 from motiontool.dpl.functions import function_table
+from motiontool.language.diagnostics import Location
 
 Op = Callable[[], "int | None"]
 _MASK = 0xFFFFFFFF

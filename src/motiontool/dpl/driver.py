@@ -8,13 +8,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TextIO
 
-from motiontool.aposs.diagnostics import CompileError, Diagnostic, DiagnosticSink, Location
 from motiontool.dpl import ast
 from motiontool.dpl.check import Symbols, check_program
 from motiontool.dpl.image import MAX_SOURCE_BYTES
 from motiontool.dpl.lexer import tokenize
 from motiontool.dpl.parser import MAX_NESTING, parse
-from motiontool.fileio import read_bytes
+from motiontool.language.diagnostics import CompileError, Diagnostic, DiagnosticSink, Location
+from motiontool.language.source import read_source
 
 SUFFIX = ".dpl"
 # The recursive-descent parser spends some 12 frames per parenthesis: 90 of them (under MAX_NESTING) overran
@@ -25,16 +25,6 @@ _FRAMES = MAX_NESTING * 16 + 1000
 def _room_for_nesting() -> None:
     if sys.getrecursionlimit() < _FRAMES:  # raised once, never lowered: the IDE checks in several threads
         sys.setrecursionlimit(_FRAMES)
-
-
-def source_text(data: bytes) -> str:
-    """Program bytes as the APOSS compiler reads them (aposs.preprocess.read_source): UTF-8 with or without a
-    BOM, else Latin-1, CRLF and CR line ends as LF."""
-    try:
-        text = data.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        text = data.decode("latin-1")
-    return text.replace("\r\n", "\n").replace("\r", "\n")
 
 
 @dataclass
@@ -63,7 +53,7 @@ def check_source(text: str | None = None, path: Path | str | None = None) -> Che
     sink = DiagnosticSink()
     if text is None:
         try:
-            text = source_text(read_bytes(label, MAX_SOURCE_BYTES, "DPL program"))  # never a device (R4)
+            text = read_source(label, MAX_SOURCE_BYTES, "DPL program")  # as APOSS reads them; never a device (R4)
         except OSError as exc:
             message = f"cannot read the file: {exc.strerror or exc}"
             return CheckResult(None, None, [Diagnostic("error", message, Location(label, 1, 1))])

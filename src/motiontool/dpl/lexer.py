@@ -10,11 +10,10 @@ from __future__ import annotations
 import math
 import re
 
-from motiontool.aposs.diagnostics import CompileError, Location
-from motiontool.aposs.lexer import Token  # the APOSS token: kind, text, value, loc (its macro fields stay empty)
+from motiontool.language.diagnostics import CompileError, Location
+from motiontool.language.tokens import EOF, FLOAT, IDENT, INT, NEWLINE, OP, STRING, Token, lookalike_hint
 
-IDENT, INT, FLOAT, STRING, PARAM, OP, NEWLINE, NOTES, EOF = (
-    "IDENT", "INT", "FLOAT", "STRING", "PARAM", "OP", "NEWLINE", "NOTES", "EOF")
+PARAM, NOTES = "PARAM", "NOTES"
 
 INT32_MAX = (1 << 31) - 1
 
@@ -37,10 +36,6 @@ _TOKEN = re.compile(r"""
 _NOTES_OPEN = re.compile(r"[ \t\f\r]*(?:\n[ \t\f\r]*)*\{")
 _BAD_NUMBER_TAIL = re.compile(r"[A-Za-z_%]")
 _WORD_TAIL = re.compile(r"[A-Za-z0-9_%]*")
-_NAMES = {"\u2013": "EN DASH", "\u2014": "EM DASH", "\u201c": "LEFT DOUBLE QUOTATION MARK",
-          "\u201d": "RIGHT DOUBLE QUOTATION MARK", "\u2018": "LEFT SINGLE QUOTATION MARK",
-          "\u2019": "RIGHT SINGLE QUOTATION MARK", "\u00a0": "NO-BREAK SPACE"}
-_HINTS = {"\u2013": "-", "\u2014": "-", "\u201c": '"', "\u201d": '"', "\u2018": "'", "\u2019": "'", "\u00a0": " "}
 
 
 def tokenize(text: str, file: str) -> list[Token]:
@@ -131,10 +126,7 @@ def _bad_character(ch: str) -> str:
         return "missing closing '\"' of the string"
     if ch == "%":
         return "unexpected '%': it belongs directly after an integer variable's name (Count%)"
-    name = _NAMES.get(ch)
-    if name:
-        return f"unexpected character '{ch}' (U+{ord(ch):04X} {name}); write '{_HINTS[ch]}'"
-    return f"unexpected character '{ch}'"
+    return f"unexpected character '{ch}'{lookalike_hint(ch)}"
 
 
 def _number(kind: str, word: str, loc: Location, negated: bool) -> Token:

@@ -8,9 +8,9 @@ OR; AND; NOT; comparisons ``= <> < > <= >=``; bitwise ``& |``; ``+ -``; ``* /``;
 
 from __future__ import annotations
 
-from motiontool.aposs.diagnostics import CompileError
 from motiontool.dpl import ast
 from motiontool.dpl.lexer import EOF, FLOAT, IDENT, INT, NEWLINE, NOTES, OP, PARAM, STRING, Token
+from motiontool.language.diagnostics import CompileError
 
 # Task names as SyPT writes them; the checks decide which ones the simulator runs.
 TASKS = {"INITIAL": "Initial", "BACKGROUND": "Background", "POS0": "Pos0", "POS1": "Pos1", "CLOCK": "Clock",

@@ -12,7 +12,7 @@ from dataclasses import dataclass, fields
 
 from PySide6.QtWidgets import QCheckBox, QDialog, QDialogButtonBox, QFormLayout, QLabel, QSpinBox
 
-from motiontool.aposs.diagnostics import Diagnostic, Location
+from motiontool.language.diagnostics import Diagnostic, Location
 
 _DIRECTIVE = re.compile(r"^\s*#\s*(define|undef|if|ifdef|ifndef|elif|else|endif|pragma)\b")
 NO_XREF = ("Settings → Compiler → Generate Cross Reference is off: the debugger and the Watch need the cross "

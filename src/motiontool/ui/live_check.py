@@ -11,9 +11,9 @@ from dataclasses import dataclass, field
 
 from PySide6.QtCore import QObject, Signal
 
-from motiontool.aposs.diagnostics import Cancelled
 from motiontool.aposs.driver import CompileResult, compile_source
 from motiontool.dpl.driver import check_source
+from motiontool.language.diagnostics import Cancelled
 
 
 @dataclass
