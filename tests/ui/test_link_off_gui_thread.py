@@ -16,14 +16,15 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import pytest
-from PySide6.QtCore import Qt, QTimer
-from PySide6.QtWidgets import QApplication, QMessageBox, QToolButton
+from PySide6.QtCore import QPoint, Qt, QTimer
+from PySide6.QtGui import QContextMenuEvent
+from PySide6.QtWidgets import QApplication, QMenu, QMessageBox, QToolButton
 
 from motiontool.comms import links
 from motiontool.comms.link import Link
 from motiontool.comms.links import open_link, register_link_scheme
 from motiontool.ui.controllers import InterfaceConfig
-from tests.modal import answering, button_reply, cancel_reply, file_reply, ok_reply
+from tests.modal import answering, button_reply, cancel_reply, file_reply, ok_reply, text_reply
 
 SCHEME = "gui-thread-check"
 PROGRAM = "x = 1\nPRINT \"ran \", x\n"
@@ -292,6 +293,91 @@ def scope_single_shot(qtbot, w, tmp_path) -> None:
     scope.close()
 
 
+# --- the debugger (DG L3364-3459) --------------------------------------------------------------------------------
+def debugging(qtbot, w, tmp_path):
+    """Prepare Singlestep on PROGRAM: stopped before line 1 (`x = 1`); the requests so far are forgotten."""
+    connect(qtbot, w)
+    program(w, tmp_path)
+    editor = w.current_editor()
+    w.actions_by_text["Prepare Singlestep"].trigger()
+    qtbot.waitUntil(lambda: editor.debug_current == 1, timeout=20_000)
+    RECORD.clear()
+    return editor
+
+
+def at(editor, line: int, col: int) -> QPoint:
+    cursor = editor.textCursor()
+    cursor.setPosition(editor.document().findBlockByNumber(line - 1).position() + col - 1)
+    return editor.cursorRect(cursor).center() + QPoint(1, 0)
+
+
+def step_to_print(qtbot, w, editor) -> None:
+    editor.setFocus()
+    qtbot.keyClick(editor, Qt.Key.Key_F9)
+    qtbot.waitUntil(lambda: editor.debug_current == 2, timeout=20_000)
+
+
+def prepare_singlestep(qtbot, w, tmp_path) -> None:
+    connect(qtbot, w)
+    program(w, tmp_path)
+    RECORD.clear()
+    w.actions_by_text["Prepare Singlestep"].trigger()
+    said(qtbot, w, "Prepare stepping ok")
+
+
+def breakpoint_go(qtbot, w, tmp_path) -> None:
+    """Double-click line 2 (a breakpoint, sent at once), then Go stops there (DG L3408-3418, L2436-2438)."""
+    editor = debugging(qtbot, w, tmp_path)
+    qtbot.mouseClick(editor.viewport(), Qt.MouseButton.LeftButton, pos=at(editor, 2, 2))
+    qtbot.mouseDClick(editor.viewport(), Qt.MouseButton.LeftButton, pos=at(editor, 2, 2))
+    assert editor.breakpoints() == [2]
+    w.actions_by_text["Go"].trigger()
+    qtbot.waitUntil(lambda: editor.debug_current == 2, timeout=20_000)
+
+
+def singlestep(qtbot, w, tmp_path) -> None:
+    step_to_print(qtbot, w, debugging(qtbot, w, tmp_path))
+
+
+def variable_value(qtbot, w, tmp_path) -> None:
+    """A left click on `x` shows its value in the yellow popup (DG L3440-3444)."""
+    editor = debugging(qtbot, w, tmp_path)
+    step_to_print(qtbot, w, editor)
+    RECORD.clear()
+    qtbot.mouseClick(editor.viewport(), Qt.MouseButton.LeftButton, pos=at(editor, 2, 15))
+    qtbot.waitUntil(lambda: editor.value_popup is not None and editor.value_popup.text() == "x = 1",
+                    timeout=20_000)
+
+
+def change_value(qtbot, w, tmp_path) -> None:
+    """Right-click `x`, Change value of x..., type 5: the program prints it (DG L3457-3459)."""
+    editor = debugging(qtbot, w, tmp_path)
+    step_to_print(qtbot, w, editor)
+    RECORD.clear()
+
+    def choose() -> None:
+        menu = QApplication.activePopupWidget()
+        if not isinstance(menu, QMenu):       # the menu asks the value before it opens
+            QTimer.singleShot(50, choose)
+            return
+        action = next(a for a in menu.actions() if a.text().startswith("Change value of x"))
+        qtbot.mouseClick(menu, Qt.MouseButton.LeftButton, pos=menu.actionGeometry(action).center())
+
+    pos = at(editor, 2, 15)
+    with answering(qtbot, text_reply("5"), timeout=20_000):
+        QTimer.singleShot(150, choose)
+        QApplication.sendEvent(editor.viewport(), QContextMenuEvent(QContextMenuEvent.Reason.Mouse, pos,
+                                                                    editor.viewport().mapToGlobal(pos)))
+    w.actions_by_text["Singlestep"].trigger()      # the dialog took the focus: the menu's entry, not F9
+    said(qtbot, w, "ran 5")
+
+
+def end_debug(qtbot, w, tmp_path) -> None:
+    debugging(qtbot, w, tmp_path)
+    w.actions_by_text["End Debug"].trigger()
+    said(qtbot, w, "Debug ended")
+
+
 def every_controller(entry: str, says: str):
     """Development ▸ Break all / Start all / Delete Programs all: Break all and Delete Programs all reach 1 and 2
     (the scan found both), Start all the open one (F24)."""
@@ -308,6 +394,8 @@ class Case:
     action: Callable
     todo: str = ""          # why it still runs on the GUI thread (xfail), "" when it does not
 
+
+DEBUG = "the debugger asks its link on the GUI thread"
 
 CASES = {
     "Select Controller": Case(select_controller),
@@ -327,6 +415,12 @@ CASES = {
     "Error History": Case(error_history),
     "Oscilloscope Start/Stop": Case(scope_start_stop),
     "Oscilloscope Single Shot Start/Stop": Case(scope_single_shot),
+    "Prepare Singlestep": Case(prepare_singlestep, DEBUG),
+    "Breakpoint and Go": Case(breakpoint_go, DEBUG),
+    "Singlestep": Case(singlestep, DEBUG),
+    "Variable value": Case(variable_value, DEBUG),
+    "Change value": Case(change_value, DEBUG),
+    "End Debug": Case(end_debug, DEBUG),
 }
 
 
