@@ -68,8 +68,8 @@ IMAGE_PROGRAMS = ["D12_hello.m", "F_C11_position_interrupts.m", "F_D20_functions
 
 def _seeds() -> dict[str, list[str | bytes]]:
     from motiontool.camcurve.model import Curve, FixPoint
-    from motiontool.cameditor.dat import dat_text
-    from motiontool.cameditor.zbc import ArrayEntry, ConfigFile, config_text
+    from motiontool.formats.dat import dat_text
+    from motiontool.formats.zbc import ArrayEntry, ConfigFile, config_text
     from motiontool.headless import _write_csv
 
     stamping = Curve("stamping", 4000, (FixPoint(0, 0, "C"), FixPoint(1500, 1200, "T"), FixPoint(2500, 2400, "T"),
@@ -227,13 +227,13 @@ def mutate_image(r, data: bytes) -> bytes:
 def _reader(fmt: str) -> tuple[Callable[[Path], object], tuple[type[BaseException], ...], str]:
     """(read PATH, the reader's own error classes, file suffix)."""
     if fmt == "zbc":
-        from motiontool.cameditor.zbc import ConfigError, read_config
+        from motiontool.formats.zbc import ConfigError, read_config
         return read_config, (ConfigError,), ".zbc"
     if fmt == "dat":
-        from motiontool.cameditor.dat import DatError, read_dat
+        from motiontool.formats.dat import DatError, read_dat
         return read_dat, (DatError,), ".dat"
     if fmt == "zba":
-        from motiontool.arrayeditor.zba import ZbaError, read_zba
+        from motiontool.formats.zba import ZbaError, read_zba
         return read_zba, (ZbaError,), ".zba"
     if fmt == "zbo":
         from motiontool.scope.zbo import ZboError, load

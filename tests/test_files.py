@@ -15,7 +15,7 @@ import pytest
 
 from motiontool import cli
 from motiontool.aposs import preprocess
-from motiontool.cameditor import zbc
+from motiontool.formats import zbc
 
 PROGRAM = 'PRINT "hello"\n'
 STAMPING = ["--name", "stamping", "--master-length", "4000", "--intervals", "40", "--point", "0,0,C",

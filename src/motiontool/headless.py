@@ -16,7 +16,6 @@ from typing import TextIO
 from motiontool import cliargs
 from motiontool.aposs.driver import compile_source
 from motiontool.cameditor.transfer import download_config
-from motiontool.cameditor.zbc import ConfigError, read_config
 from motiontool.cliargs import BadNumber, parse_input, parse_setting, shown
 from motiontool.comms.client import ControllerClient
 from motiontool.comms.eventorder import TimeOrder
@@ -25,6 +24,7 @@ from motiontool.comms.protocol import LinkError, LinkEvent
 from motiontool.controller.embedded import EmbeddedLink
 from motiontool.dpl.driver import is_dpl
 from motiontool.fileio import atomic_write_text, check_writable, write_error
+from motiontool.formats.zbc import ConfigError, read_config
 from motiontool.headless_dpl import run_dpl
 from motiontool.runsetup import (  # noqa: F401 - RunOptions and the exit codes are the run's interface
     EXIT_COMPILE,

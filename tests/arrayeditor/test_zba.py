@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from motiontool.arrayeditor.zba import Record, ZbaError, ZbaFile, parse_zba, zba_text
+from motiontool.formats.zba import Record, ZbaError, ZbaFile, parse_zba, zba_text
 
 MANUAL_EXAMPLE = """Date,2009:07:27 10:52
 Widths, 150, 40, 40, 40, 70, 70, 70, 70, 70, 365

@@ -10,7 +10,7 @@ import sys
 import pytest
 
 from motiontool.camcurve.model import MAX_ARRAY_ELEMENTS, MAX_INTERVALS
-from motiontool.cameditor.dat import dat_text
+from motiontool.formats.dat import dat_text
 from tests.camcurve.conftest import stamping_curve
 from tests.cameditor.test_camcli import STAMPING
 
@@ -85,7 +85,7 @@ def test_forty_thousand_one_element_arrays_are_read_in_linear_time(tmp_path):
     zbc = tmp_path / "many.zbc"
     zbc.write_text("\n".join([*lines, "[end]"]) + "\n")
     code = ("import resource, sys; resource.setrlimit(resource.RLIMIT_CPU, (20, 20));"
-            "from motiontool.cameditor.zbc import read_config; print(len(read_config(sys.argv[1]).arrays))")
+            "from motiontool.formats.zbc import read_config; print(len(read_config(sys.argv[1]).arrays))")
     result = subprocess.run([sys.executable, "-c", code, str(zbc)], capture_output=True, text=True, timeout=300)
     assert result.returncode == 0 and result.stdout == "40000\n", result.stderr
 

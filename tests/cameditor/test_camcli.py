@@ -8,8 +8,8 @@ import pytest
 
 from motiontool.camcurve.layout import encode
 from motiontool.cameditor import camcli
-from motiontool.cameditor.dat import DatError, dat_text, parse_dat, read_dat, write_dat
-from motiontool.cameditor.zbc import read_config
+from motiontool.formats.dat import DatError, dat_text, parse_dat, read_dat, write_dat
+from motiontool.formats.zbc import read_config
 from tests.camcurve.conftest import stamping_curve
 
 STAMPING = ["--name", "stamping", "--master-length", "4000", "--intervals", "40", "--point", "0,0,C",

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from motiontool.cameditor import editing
-from motiontool.cameditor.zbc import read_config
+from motiontool.formats.zbc import read_config
 from tests.cameditor.test_camcli import run
 
 LAW_POINTS = ["--point", "0,0", "--point", "900,0,p345", "--point", "1800,1000,CYCL", "--point", "2700,1000,HARM",
@@ -36,7 +36,7 @@ def test_type_names_offer_the_laws():
 
 def test_dat_export_import_keeps_the_laws(tmp_path):
     """.dat holds the controller array; the law type codes 4..8 survive export → import (decision C13)."""
-    from motiontool.cameditor.dat import read_dat, write_dat
+    from motiontool.formats.dat import read_dat, write_dat
     from tests.cameditor.law_trace import law_curve
 
     for interpolation in (True, False):

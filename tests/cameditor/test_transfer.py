@@ -7,8 +7,8 @@ import pytest
 
 from motiontool.camcurve.layout import encode
 from motiontool.cameditor.transfer import download_config, upload_config
-from motiontool.cameditor.zbc import ArrayEntry, ConfigError, ConfigFile, write_config
 from motiontool.controller.embedded import EmbeddedLink
+from motiontool.formats.zbc import ArrayEntry, ConfigError, ConfigFile, write_config
 from tests.camcurve.conftest import stamping_curve
 
 

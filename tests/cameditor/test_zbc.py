@@ -9,7 +9,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from motiontool.camcurve import Curve, CurveError, FixPoint, element_count
-from motiontool.cameditor.zbc import ArrayEntry, ConfigError, ConfigFile, config_text, read_config, write_config
+from motiontool.formats.zbc import ArrayEntry, ConfigError, ConfigFile, config_text, read_config, write_config
 from tests.camcurve.conftest import marker_curve, slavesync_curve, stamping_curve
 from tests.camcurve.strategies import curves
 

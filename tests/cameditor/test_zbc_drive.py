@@ -8,8 +8,8 @@ DG 2886: "the entire controller configuration … can be uploaded and saved as a
 import pytest
 
 from motiontool.cameditor.transfer import download_config, upload_config
-from motiontool.cameditor.zbc import ConfigError, ConfigFile, config_text, read_config, write_config
 from motiontool.controller.embedded import EmbeddedLink
+from motiontool.formats.zbc import ConfigError, ConfigFile, config_text, read_config, write_config
 
 HEADER = "# motiontool configuration file, format {}\n"
 

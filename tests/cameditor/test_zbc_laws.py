@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from motiontool.camcurve import Curve, FixPoint
-from motiontool.cameditor.zbc import ConfigError, ConfigFile, config_text, read_config, write_config
+from motiontool.formats.zbc import ConfigError, ConfigFile, config_text, read_config, write_config
 from tests.camcurve.conftest import stamping_curve
 
 

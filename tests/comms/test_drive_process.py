@@ -183,7 +183,7 @@ def test_download_start_break_continue_and_the_debugger_over_the_wire():
 def test_array_editor_and_cam_download_over_the_wire(tmp_path):
     from motiontool.arrayeditor.rows import ArrayList
     from motiontool.cameditor.transfer import download_config, upload_config
-    from motiontool.cameditor.zbc import read_config
+    from motiontool.formats.zbc import read_config
 
     conf = tmp_path / "c.zbc"
     proc = subprocess.run([sys.executable, "-m", "motiontool", "cam", "build", "--name", "c", "--master-length",

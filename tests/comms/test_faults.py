@@ -137,7 +137,7 @@ def test_downloads_arrays_cam_debugger_and_recordings_over_a_bad_line(tmp_path):
     import sys
 
     from motiontool.cameditor.transfer import download_config, upload_config
-    from motiontool.cameditor.zbc import read_config
+    from motiontool.formats.zbc import read_config
 
     conf = tmp_path / "c.zbc"
     built = subprocess.run([sys.executable, "-m", "motiontool", "cam", "build", "--name", "c", "--master-length",

@@ -19,8 +19,8 @@ class Files:
 
     def __init__(self, folder: Path) -> None:
         from motiontool.cameditor import editing
-        from motiontool.cameditor.dat import write_dat
-        from motiontool.cameditor.zbc import ConfigFile, write_config
+        from motiontool.formats.dat import write_dat
+        from motiontool.formats.zbc import ConfigFile, write_config
         from motiontool.resources import resources_path
         from motiontool.scope import zbo
         from motiontool.scope.acquisition import default_group, new_curve

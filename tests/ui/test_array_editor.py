@@ -3,7 +3,7 @@
 from PySide6.QtCore import QItemSelectionModel, Qt
 
 from motiontool.arrayeditor.ui.editor import COLUMNS, GREEN, RED_BG, VALUE
-from motiontool.arrayeditor.zba import read_zba
+from motiontool.formats.zba import read_zba
 
 
 def _open(window):

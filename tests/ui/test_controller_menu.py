@@ -3,7 +3,7 @@
 import pytest
 
 from motiontool.cameditor.transfer import SETS
-from motiontool.cameditor.zbc import read_config
+from motiontool.formats.zbc import read_config
 from motiontool.ui import controller_menu as cm
 
 

@@ -13,9 +13,9 @@ from __future__ import annotations
 import contextlib
 from dataclasses import dataclass, replace
 
-from motiontool.arrayeditor.zba import Record, ZbaFile
 from motiontool.comms.link import Link
 from motiontool.comms.protocol import LinkError
+from motiontool.formats.zba import Record, ZbaFile
 from motiontool.paramdb import Parameter, database
 
 READ_ONLY_KINDS = ("Proc", "System")

@@ -19,10 +19,10 @@ from motiontool.camcurve.model import (
     StartStopPair,
     default_pairs,
 )
-from motiontool.cameditor.dat import DatError, read_dat, write_dat
-from motiontool.cameditor.zbc import ConfigError, ConfigFile, read_config, write_config
 from motiontool.cliargs import BadNumber, real, whole
 from motiontool.fileio import check_writable, write_error
+from motiontool.formats.dat import DatError, read_dat, write_dat
+from motiontool.formats.zbc import ConfigError, ConfigFile, read_config, write_config
 
 
 class _InputError(ValueError):

@@ -10,10 +10,10 @@ from __future__ import annotations
 
 from motiontool.camcurve.layout import CurveArrayError, decode
 from motiontool.camcurve.model import CurveError
-from motiontool.cameditor import zbc_drive
-from motiontool.cameditor.zbc import ArrayEntry, ConfigError, ConfigFile, parameter_section
 from motiontool.comms.link import Link
 from motiontool.comms.protocol import LinkError
+from motiontool.formats import zbc_drive
+from motiontool.formats.zbc import ArrayEntry, ConfigError, ConfigFile, parameter_section
 from motiontool.paramdb import database
 
 #: The sets Restore from file offers as checkboxes (DG 2894-2900): parameter sections of the .zbc, and arrays;

@@ -109,8 +109,8 @@ def _preload_curve_maths() -> None:
     import threading
 
     def work() -> None:
-        for module in ("motiontool.camcurve.layout", "motiontool.cameditor.transfer", "motiontool.cameditor.zbc",
-                       "motiontool.cameditor.dat", "motiontool.cameditor.apcconvert", "motiontool.cameditor.apcdpl"):
+        for module in ("motiontool.camcurve.layout", "motiontool.cameditor.transfer", "motiontool.formats.zbc",
+                       "motiontool.formats.dat", "motiontool.cameditor.apcconvert", "motiontool.cameditor.apcdpl"):
             with contextlib.suppress(Exception):
                 importlib.import_module(module)  # cached in sys.modules for the editor's own import
 

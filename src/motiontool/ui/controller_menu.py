@@ -51,7 +51,8 @@ MEMORY_ENTRIES = (("Save RAM", "ram", "programs, parameters and arrays are copie
 def _config_io():
     """The .zbc reader/writer and the transfer, imported on first use: they pull in the curve maths (scipy),
     which would add about a second to the IDE's start."""
-    from motiontool.cameditor import transfer, zbc
+    from motiontool.cameditor import transfer
+    from motiontool.formats import zbc
 
     return transfer, zbc
 
@@ -397,7 +398,7 @@ def show_programs(w) -> None:
 def diagnostic_report_text(link, controller_id: int) -> str:
     """Controller → Diagnostic Report (DG 3029-3031): the controller's entire current state as text for
     support: identity, status, error history, programs, every parameter and every array."""
-    from motiontool.cameditor.zbc import config_text
+    from motiontool.formats.zbc import config_text
     from motiontool.paramdb import database
 
     ident = link.identify()

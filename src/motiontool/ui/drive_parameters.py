@@ -13,7 +13,7 @@ from decimal import Decimal, InvalidOperation
 
 from PySide6.QtWidgets import QComboBox, QHBoxLayout, QLabel
 
-from motiontool.cameditor.zbc_drive import write_settings
+from motiontool.formats.zbc_drive import write_settings
 from motiontool.kernel.fc300_table import CELSIUS, FC_PARAMETERS, RPM, FCParam
 from motiontool.ui.controller_links import controller_link, interface_controllers
 from motiontool.ui.parameter_pages import ParameterPages

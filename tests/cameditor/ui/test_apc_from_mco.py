@@ -7,7 +7,7 @@ from __future__ import annotations
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QToolBar
 
-from motiontool.cameditor.zbc import ConfigFile
+from motiontool.formats.zbc import ConfigFile
 from tests.camcurve.conftest import stamping_curve
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 from PySide6.QtCore import QSettings
 
 from motiontool.cameditor.ui import open_cam_editor
-from motiontool.cameditor.zbc import ConfigFile
+from motiontool.formats.zbc import ConfigFile
 from tests.camcurve.conftest import stamping_curve
 from tests.cameditor.ui.helpers import field, ok
 

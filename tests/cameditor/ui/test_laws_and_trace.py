@@ -12,7 +12,7 @@ from PySide6.QtWidgets import QComboBox
 
 from motiontool.camcurve.model import FIX_POINT_TYPES
 from motiontool.camcurve.spline import profile
-from motiontool.cameditor.zbc import ConfigFile, read_config
+from motiontool.formats.zbc import ConfigFile, read_config
 from tests.cameditor.law_trace import law_curve, record_trace
 from tests.cameditor.ui.helpers import L, R, add_array, add_fix_points, cell_center, choose_type, click, ok, to_pixel
 

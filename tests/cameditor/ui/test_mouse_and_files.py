@@ -7,7 +7,7 @@ from PySide6.QtCore import Qt
 from motiontool.camcurve.layout import encode
 from motiontool.camcurve.spline import profile
 from motiontool.cameditor.transfer import download_config
-from motiontool.cameditor.zbc import ConfigFile
+from motiontool.formats.zbc import ConfigFile
 from tests.camcurve.conftest import marker_curve, stamping_curve
 from tests.cameditor.ui.helpers import (
     R,

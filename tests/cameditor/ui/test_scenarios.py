@@ -8,7 +8,7 @@ from PySide6.QtCore import Qt
 from motiontool.aposs.driver import compile_source
 from motiontool.camcurve.layout import encode
 from motiontool.camcurve.spline import profile
-from motiontool.cameditor.zbc import read_config
+from motiontool.formats.zbc import read_config
 from tests.camcurve.conftest import marker_curve, slavesync_curve, stamping_curve
 from tests.cameditor.ui.helpers import (
     add_array,

@@ -6,7 +6,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from motiontool.cameditor.zbc import ConfigFile
+from motiontool.formats.zbc import ConfigFile
 from tests.camcurve.conftest import marker_curve
 
 

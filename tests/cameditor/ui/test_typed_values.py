@@ -4,7 +4,7 @@ holds LONG values ("Long word (32 bit): -2^31 to +2^31-1", DG 6397; docs/formats
 
 from __future__ import annotations
 
-from motiontool.cameditor.zbc import ConfigFile, read_config
+from motiontool.formats.zbc import ConfigFile, read_config
 from tests.camcurve.conftest import stamping_curve
 from tests.cameditor.ui.helpers import add_fix_points, add_pairs, edit_cell
 from tests.modal import answering, file_reply

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from PySide6.QtCore import QPoint, Qt
 
-from motiontool.cameditor.zbc import ConfigFile, read_config
+from motiontool.formats.zbc import ConfigFile, read_config
 from tests.camcurve.conftest import stamping_curve
 from tests.cameditor.ui.helpers import drag, to_pixel
 from tests.modal import answering, file_reply

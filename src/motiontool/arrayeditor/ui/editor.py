@@ -23,9 +23,9 @@ from PySide6.QtWidgets import (
 )
 
 from motiontool.arrayeditor.rows import ArrayList, Row
-from motiontool.arrayeditor.zba import ZbaError, read_zba, write_zba
 from motiontool.comms.protocol import LinkError
 from motiontool.fileio import reason
+from motiontool.formats.zba import ZbaError, read_zba, write_zba
 
 
 def shown_date(stamp: str) -> str:

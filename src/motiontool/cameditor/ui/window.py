@@ -27,7 +27,6 @@ from PySide6.QtWidgets import (
 from motiontool.camcurve.layout import element_count
 from motiontool.camcurve.model import Curve, CurveError
 from motiontool.cameditor import editing
-from motiontool.cameditor.dat import DatError, read_dat, write_dat
 from motiontool.cameditor.history import History
 from motiontool.cameditor.transfer import download_config, upload_config
 from motiontool.cameditor.ui.apc_panel import ApcPanel
@@ -43,10 +42,11 @@ from motiontool.cameditor.ui.diagram import CurveDiagram
 from motiontool.cameditor.ui.edits import EditsMixin
 from motiontool.cameditor.ui.tables import FixPointTable, StartStopTable
 from motiontool.cameditor.ui.trace import TraceOverlay
-from motiontool.cameditor.zbc import EXTENSIONS, ArrayEntry, ConfigError, ConfigFile, read_config, write_config
 from motiontool.comms.link import Link
 from motiontool.comms.protocol import LinkError
 from motiontool.fileio import reason, write_error
+from motiontool.formats.dat import DatError, read_dat, write_dat
+from motiontool.formats.zbc import EXTENSIONS, ArrayEntry, ConfigError, ConfigFile, read_config, write_config
 
 FILE_FILTER = "CAM configuration (*.zbc *.cnf);;All files (*)"
 

@@ -25,8 +25,8 @@ from motiontool.camcurve.model import (
     FixPoint,
     StartStopPair,
 )
-from motiontool.cameditor import zbc_drive
 from motiontool.fileio import MiB, atomic_write_text, read_bytes
+from motiontool.formats import zbc_drive
 from motiontool.paramdb import Parameter, ParameterError, database
 
 FORMAT_VERSION = 3  # 2: motion laws (LAW_TYPES), 3: the [fc300] section; each written only by files that use it
