@@ -395,8 +395,6 @@ class Case:
     todo: str = ""          # why it still runs on the GUI thread (xfail), "" when it does not
 
 
-DEBUG = "the debugger asks its link on the GUI thread"
-
 CASES = {
     "Select Controller": Case(select_controller),
     "connect (Esc)": Case(connect_with_esc),
@@ -415,12 +413,12 @@ CASES = {
     "Error History": Case(error_history),
     "Oscilloscope Start/Stop": Case(scope_start_stop),
     "Oscilloscope Single Shot Start/Stop": Case(scope_single_shot),
-    "Prepare Singlestep": Case(prepare_singlestep, DEBUG),
-    "Breakpoint and Go": Case(breakpoint_go, DEBUG),
-    "Singlestep": Case(singlestep, DEBUG),
-    "Variable value": Case(variable_value, DEBUG),
-    "Change value": Case(change_value, DEBUG),
-    "End Debug": Case(end_debug, DEBUG),
+    "Prepare Singlestep": Case(prepare_singlestep),
+    "Breakpoint and Go": Case(breakpoint_go),
+    "Singlestep": Case(singlestep),
+    "Variable value": Case(variable_value),
+    "Change value": Case(change_value),
+    "End Debug": Case(end_debug),
 }
 
 
@@ -485,4 +483,32 @@ def test_while_execute_waits_for_its_download_the_window_paints_and_says_so(chec
     assert seen["message"] == "Controller 1: downloading ran …"
     assert seen["cursor"] == Qt.CursorShape.BusyCursor
     assert seen["ticks while held"] >= 5, seen     # 25 at 20 ms; a window that stood still has none
+    assert QApplication.overrideCursor() is None and checked.statusBar().currentMessage() == ""
+
+
+def test_while_prepare_singlestep_downloads_the_window_says_so(checked, qtbot, tmp_path):
+    """Prepare Singlestep with its debug download held on the line: the status bar names it, the cursor is busy;
+    both are gone once the program stands before its first statement."""
+    connect(qtbot, checked)
+    program(checked, tmp_path)
+    arrived, through = threading.Event(), threading.Event()
+    HOLD["download"] = (arrived, through)
+    seen: dict[str, object] = {}
+
+    def look() -> None:
+        if not arrived.is_set():
+            QTimer.singleShot(20, look)
+            return
+        seen["message"] = checked.statusBar().currentMessage()
+        cursor = QApplication.overrideCursor()
+        seen["cursor"] = cursor.shape() if cursor is not None else None
+        through.set()
+
+    QTimer.singleShot(0, look)
+    try:
+        checked.actions_by_text["Prepare Singlestep"].trigger()
+    finally:
+        through.set()
+    said(qtbot, checked, "Prepare stepping ok")
+    assert seen == {"message": "Controller 1: downloading ran for debugging …", "cursor": Qt.CursorShape.BusyCursor}
     assert QApplication.overrideCursor() is None and checked.statusBar().currentMessage() == ""

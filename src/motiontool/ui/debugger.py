@@ -3,16 +3,20 @@
 The debug session compiles the current program in debug mode (statement stops), downloads it, starts it
 stopped before its first statement and then follows the controller's status: whenever the program stands in
 "break" the editor shows the next statement in yellow.  Breakpoints are sent to the controller whenever they
-change.  Everything goes through the window's LinkBridge.
+change.  Everything goes through the window's LinkBridge; each request runs on a thread while the window paints
+and says what it waits for (ui/link_jobs.waiting, decision I34).
 """
 
 from __future__ import annotations
+
+from pathlib import Path
 
 from PySide6.QtCore import QObject, QTimer
 from PySide6.QtWidgets import QInputDialog
 
 from motiontool.comms.protocol import LinkError
 from motiontool.ui.compiler_settings import NO_XREF
+from motiontool.ui.link_jobs import waiting
 from motiontool.ui.watch import WatchPane
 
 WATCH_INTERVAL_MS = 250
@@ -56,6 +60,10 @@ class Debugger(QObject):
     def _report(self, exc: Exception) -> None:
         self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: {exc}")
 
+    def _wait(self, doing: str, work):
+        """`work()` (link requests only, no widget) on a thread; user input waits, so no command starts twice."""
+        return waiting(self.w, f"Controller {self.w.bridge.controller_id}: {doing} …", work)
+
     # --- session ---------------------------------------------------------------------------------------
     def prepare(self) -> bool:
         """Prepare Singlestep (DG L2432-2434, L3364-3382): compile in debug mode, download, do not run."""
@@ -82,14 +90,20 @@ class Debugger(QObject):
         messages.ide(f"Compiling debug ok ({size} bytes)")
         editor = self.w.current_editor()
         link = self._link()
-        try:
+        stack = dev.compiler_settings().stack_size
+
+        def send() -> None:
             if link.status().program_state == "running":
                 link.break_program()
-            link.download(image.to_bytes(), name=image.name, stack_size=dev.compiler_settings().stack_size)
+            link.download(image.to_bytes(), name=image.name, stack_size=stack)
+
+        try:
+            self._wait(f"downloading {Path(image.name).name} for debugging", send)
             messages.ide(f"Loading {size} bytes ok")
             editor.set_debug_lines({e.line for e in image.lines if e.file == 0})
-            link.set_breakpoints([n for n in editor.breakpoints() if n in editor.debug_lines])
-            link.start(step=True)
+            marks = [n for n in editor.breakpoints() if n in editor.debug_lines]
+            self._wait("starting it before its first statement",
+                       lambda: (link.set_breakpoints(marks), link.start(step=True)))
         except LinkError as exc:
             editor.end_debug()
             self._report(exc)
@@ -108,13 +122,13 @@ class Debugger(QObject):
     def go(self) -> None:
         """Go (DG L2436-2438): run to the next breakpoint."""
         if self.active:
-            self._call(lambda link: link.continue_program())
+            self._call("running to the next breakpoint", lambda link: link.continue_program())
 
     def step(self) -> None:
         """Singlestep F9 (DG L2440-2442): run the yellow statement, stop before the next one."""
         if self.active:
             self.editor.set_debug_current(None)
-            self._call(lambda link: link.step())
+            self._call("stepping", lambda link: link.step())
 
     def end(self) -> None:
         """End Debug (DG L2448-2450): leave debug mode; breakpoints stay for the next run."""
@@ -126,28 +140,31 @@ class Debugger(QObject):
         editor.end_debug()
         link = self._link()
         if link is not None:
-            try:
+            def stop() -> None:
                 if link.status().program_state in ("running", "break"):
                     link.break_program()
                 link.set_breakpoints([])
+
+            try:
+                self._wait("ending the debug session", stop)
             except LinkError as exc:
                 self._report(exc)
         self.w.messages.ide("Debug ended")
 
-    def _call(self, action) -> None:
+    def _call(self, doing: str, action) -> None:
         link = self._link()
         if link is None:
             self._report(LinkError("not connected"))
             return
         try:
-            action(link)
+            self._wait(doing, lambda: action(link))
         except LinkError as exc:
             self._report(exc)
         self.w.bridge.poll()
 
     def _send_breakpoints(self) -> None:
-        self._call(lambda link: link.set_breakpoints(
-            [n for n in self.editor.breakpoints() if n in self.editor.debug_lines]))
+        marks = [n for n in self.editor.breakpoints() if n in self.editor.debug_lines]
+        self._call("setting the breakpoints", lambda link: link.set_breakpoints(marks))
 
     def _status_changed(self, status) -> None:
         if not self.active:
@@ -196,7 +213,7 @@ class Debugger(QObject):
         if link is None:
             return None
         try:
-            return format_value(link.read_variables([name])[0])
+            return format_value(self._wait(f"reading {name}", lambda: link.read_variables([name])[0]))
         except LinkError:
             return None
 
@@ -213,9 +230,13 @@ class Debugger(QObject):
         except ValueError:
             self.w.messages.ide(f"Change value: {text!r} is not a number")
             return False
+        link = self._link()
+        if link is None:
+            self._report(LinkError("not connected"))
+            return False
         try:
-            self._link().write_variable(name, value)
-        except (LinkError, AttributeError) as exc:
+            self._wait(f"writing {name}", lambda: link.write_variable(name, value))
+        except LinkError as exc:
             self._report(exc)
             return False
         self.refresh_watch()
