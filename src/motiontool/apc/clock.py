@@ -14,7 +14,8 @@ from typing import Protocol
 
 
 class Timed(Protocol):
-    period_ns: int
+    @property
+    def period_ns(self) -> int: ...
 
 
 class PosClock:

@@ -79,12 +79,13 @@ class MasterChannel:
 
     def _exchange_once(self, message: bytes) -> bytes:
         chunks = split(message, self.max_payload)
-        reply = None
+        reply: Frame | None = None
         for i, chunk in enumerate(chunks):
             last = i == len(chunks) - 1
             reply = self._send(Frame(self._next(), DATA, i == 0, last, i & 0xFFFF, chunk))
             if not last and reply.op != ACK:
                 raise _Restart(f"chunk {i}: {OP_NAMES.get(reply.op, reply.op)} instead of ACK")
+        assert reply is not None  # split gives an empty message one chunk
         answer = bytearray()
         wait = BUSY_WAIT_S
         index = 0
@@ -135,7 +136,7 @@ class SlaveChannel:
         self.max_payload = max_payload
         self.busy_after_s = busy_after_s
         self._worker: concurrent.futures.ThreadPoolExecutor | None = None
-        self._pending: concurrent.futures.Future | None = None
+        self._pending: concurrent.futures.Future[bytes] | None = None
         self._last: tuple[Frame, Frame] | None = None     # the last frame and the answer it got
         self._incoming: bytearray | None = None
         self._next_index = 0
@@ -183,6 +184,7 @@ class SlaveChannel:
         return self._error(frame, f"unknown frame operation {frame.op}")
 
     def _wait(self, frame: Frame, timeout: float) -> Frame:
+        assert self._pending is not None  # called for a request handed to the worker and not yet answered
         try:
             answer = self._pending.result(timeout=timeout)
         except concurrent.futures.TimeoutError:

@@ -17,6 +17,10 @@ from __future__ import annotations
 import random
 import time
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from motiontool.comms.links import LinkSpec
 
 
 @dataclass
@@ -89,10 +93,12 @@ class FaultyPort:
         return data
 
 
-def faults_from_options(spec) -> Faults:
+def faults_from_options(spec: LinkSpec) -> Faults:
     """The fault options of a link spec (drop, corrupt, duplicate, delay in %; seed)."""
-    return Faults(*(spec.option(name, 0.0, float, 0, 100) for name in ("drop", "corrupt", "duplicate", "delay")),
-                  seed=spec.option("seed", None, int))
+    def percent(name: str) -> float:
+        return spec.option(name, 0.0, float, 0, 100)
+    return Faults(drop=percent("drop"), corrupt=percent("corrupt"), duplicate=percent("duplicate"),
+                  delay=percent("delay"), seed=spec.option("seed", None, int))
 
 
 FAULT_OPTIONS = {"drop", "corrupt", "duplicate", "delay", "seed"}

@@ -166,7 +166,9 @@ OPERATIONS: dict[str, tuple[str, ...]] = {op: tuple(sig.parameters)[1:] for op, 
 
 def summary(op: str) -> str:
     """The answer of an operation, from its declaration (one line)."""
-    return " ".join(inspect.getdoc(getattr(ControllerOperations, "op_" + op)).split())
+    doc = inspect.getdoc(getattr(ControllerOperations, "op_" + op))
+    assert doc is not None, f"op_{op} is declared without the docstring that says its answer"
+    return " ".join(doc.split())
 
 
 def operation_table() -> list[str]:

@@ -23,7 +23,7 @@ class ApcLineBus:
         self.lock = threading.RLock()   # NodeLink: one request on the line at a time, whichever thread asks
         self.closed = False
         self._clock = PosClock()
-        self.links: dict[int, NodeLink] = {}
+        self.links: dict[int, NodeLink[ApcService]] = {}
         for node, drive in enumerate(self.line.drives, start=1):
             # the bus, not the node, runs the POS samples and time slices: a node's service keeps its clock and
             # streams
@@ -33,7 +33,7 @@ class ApcLineBus:
     def nodes(self) -> list[int]:
         return list(self.links)
 
-    def link(self, node: int) -> NodeLink:
+    def link(self, node: int) -> NodeLink[ApcService]:
         if node not in self.links:
             raise ValueError(f"node {node} is not on the line (nodes {self.nodes})")
         return self.links[node]

@@ -45,7 +45,12 @@ def apc_reader(drive: ApcDrive, key) -> Callable[[], int]:
     number = parameter_number(key)
     if drive.read_parameter(number) is None:
         raise ValueError(f"no APC read parameter [{number}]")
-    return lambda: drive.read_parameter(number)[0]
+
+    def read() -> int:
+        value = drive.read_parameter(number)
+        assert value is not None  # the read parameters are a fixed set: checked above
+        return value[0]
+    return read
 
 
 SYS_CLOCK = "4119"   # SYSVAR sys_clock (docs/sysvar.md)
@@ -80,7 +85,7 @@ class ApcService:
         self._run_sample = advance or self.drive.tick
         self._runs_samples = runs_samples
         self._clock = PosClock()
-        self.listeners: list[Callable[[LinkEvent], None]] = []
+        self.listeners: list[Callable[[LinkEvent], object]] = []
         self.program: Any = None                      # the DPL program host, if any
         self.arrays: list[tuple[str, list]] = []      # the program's arrays, in declaration order
         self.errors: list[dict] = []

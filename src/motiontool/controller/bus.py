@@ -11,22 +11,35 @@ from __future__ import annotations
 
 import threading
 from collections.abc import Iterable, Mapping
-from typing import Any
+from typing import Any, Generic, Protocol, TypeVar
 
 from motiontool.comms.link import Link
 from motiontool.comms.protocol import LinkError, Request
+from motiontool.controller.embedded import HostedService
 from motiontool.controller.service import ControllerService
 from motiontool.kernel.master import MasterConfig
 from motiontool.kernel.plant import PlantConfig
 from motiontool.kernel.simulation import Simulation
 
 
-class NodeLink(Link):
-    """The link to one node of an EmbeddedBus."""
+class SharedClock(Protocol):
+    """What a NodeLink needs of its bus (EmbeddedBus, apc_bus.ApcLineBus): one clock, one request at a time."""
+
+    closed: bool
+    lock: threading.RLock
+
+    def advance(self, ms: int) -> None: ...
+
+
+ServiceT = TypeVar("ServiceT", bound=HostedService)
+
+
+class NodeLink(Link, Generic[ServiceT]):
+    """The link to one node of an EmbeddedBus (or a CTSync line); `service` is the node's."""
 
     kind = "embedded"
 
-    def __init__(self, bus: EmbeddedBus, node: int, service: ControllerService):
+    def __init__(self, bus: SharedClock, node: int, service: ServiceT):
         super().__init__()
         self.bus = bus
         self.node = node
@@ -57,7 +70,7 @@ class EmbeddedBus:
         self.simulation = Simulation(nodes, master_node=master_node, master=master)
         self.lock = threading.RLock()
         self.closed = False
-        self.links: dict[int, NodeLink] = {}
+        self.links: dict[int, NodeLink[ControllerService]] = {}
         for node in self.simulation.nodes:
             link = NodeLink(self, node, ControllerService(self.simulation[node]))
             self.simulation.set_ticker(node, link.service.tick)
@@ -67,7 +80,7 @@ class EmbeddedBus:
     def nodes(self) -> list[int]:
         return self.simulation.nodes
 
-    def link(self, node: int) -> NodeLink:
+    def link(self, node: int) -> NodeLink[ControllerService]:
         self.simulation[node]  # ValueError naming an unknown node
         return self.links[node]
 

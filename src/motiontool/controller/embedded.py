@@ -15,10 +15,11 @@ import queue
 import sys
 import threading
 import time
-from typing import Any
+from collections.abc import Callable
+from typing import Any, Protocol
 
 from motiontool.comms.link import Link
-from motiontool.comms.protocol import LinkError, LinkEvent, Request
+from motiontool.comms.protocol import LinkError, LinkEvent, Request, Response
 from motiontool.controller.service import ControllerService
 from motiontool.kernel.controller import Controller
 from motiontool.kernel.master import MasterConfig
@@ -30,15 +31,34 @@ from motiontool.kernel.plant import PlantConfig
 PRINT_LINES_PER_MS = 1
 
 
+class Clocked(Protocol):
+    @property
+    def time_ms(self) -> float: ...
+
+
+class HostedService(Protocol):
+    """What a host puts behind a Link (EmbeddedLink, a bus's NodeLink): the MCO 305's ControllerService or an
+    ApcService."""
+
+    listeners: list[Callable[[LinkEvent], object]]
+
+    @property
+    def controller(self) -> Clocked: ...
+
+    def handle(self, request: Request) -> Response: ...
+
+    def tick(self) -> None:
+        """One ms of the controller."""
+
+
 class EmbeddedLink(Link):
     kind = "embedded"
 
     def __init__(self, plant: PlantConfig | None = None, realtime_factor: float | None = None,
-                 master: MasterConfig | None = None, *, service=None):
-        """`service` replaces the MCO 305 (e.g. controller.apc_service.ApcService for an APC); it needs
-        handle(request), tick() (one ms), listeners and controller.time_ms."""
+                 master: MasterConfig | None = None, *, service: HostedService | None = None):
+        """`service` replaces the MCO 305 (e.g. controller.apc_service.ApcService for an APC)."""
         super().__init__()
-        self.service = service or ControllerService(Controller(plant, master=master))
+        self.service: HostedService = service or ControllerService(Controller(plant, master=master))
         self.service.listeners.append(self._publish)
         self.realtime_factor = realtime_factor
         self._requests: queue.Queue = queue.Queue()
@@ -79,9 +99,12 @@ class EmbeddedLink(Link):
 
     # --- kernel thread ---------------------------------------------------------------------------------
     def _run(self) -> None:
+        factor = self.realtime_factor
+        assert factor is not None  # the kernel thread runs only for a paced link
         start = time.monotonic()
         ticks = 0
-        self.service.controller.output_per_tick = PRINT_LINES_PER_MS
+        if isinstance(self.service, ControllerService):   # the MCO 305's PRINT output (an APC prints none)
+            self.service.controller.output_per_tick = PRINT_LINES_PER_MS
         while not self._stop.is_set():
             while True:
                 try:
@@ -89,13 +112,13 @@ class EmbeddedLink(Link):
                 except queue.Empty:
                     break
                 done.put(self.service.handle(request))
-            due = int((time.monotonic() - start) * 1000 * self.realtime_factor)
+            due = int((time.monotonic() - start) * 1000 * factor)
             burst = min(due - ticks, 200)
             try:
                 for _ in range(burst):
                     self.service.tick()
             except Exception as exc:  # noqa: BLE001 - report it, keep the controller reachable
-                self._publish(LinkEvent("message", self.service.controller.time_ms,
+                self._publish(LinkEvent("message", int(self.service.controller.time_ms),
                                         f"internal simulator fault: {type(exc).__name__}: {exc}"))
             ticks += burst
             if burst < 200:  # idle until the next tick is due, but answer a request at once (UI latency)

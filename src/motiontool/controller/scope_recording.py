@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 from motiontool.kernel.errors import ControllerError
 from motiontool.kernel.recorder import DYNAMIC_MEMORY, MAX_INDICES
+from motiontool.kernel.vm import ArrayRef
 
 
 @dataclass
@@ -22,7 +23,7 @@ class ScopeRecording:
     readers: list[Callable]
     interval_ms: int
     destination: str            # "DYNMEM" or the name of a user array
-    array: object | None        # the user array (has .name and .data), None = dynamic memory
+    array: ArrayRef | None      # the user array, None = dynamic memory
     cyclic: bool
     limit: int                  # sample sets to keep
     start_ms: int
@@ -74,7 +75,7 @@ def configure(controller, signals: list[str], readers: list[Callable], interval_
     if int(count) < 0:
         raise ValueError(f"sample count {count}: 0 (fill available space) or more")
     k = len(signals)
-    array = None
+    array: ArrayRef | None = None
     if str(destination).upper() == "DYNMEM":
         destination = "DYNMEM"
         capacity = DYNAMIC_MEMORY // k

@@ -54,7 +54,7 @@ class ControllerService:
         self.sources: dict[int, dict] = {}      # program number → {"files", "main", "stored_at"} (Include Sourcecode)
         self.stack_sizes: dict[int | None, int] = {}  # program (None = temporary) → its Settings → Compiler stack size
         self.wipe_at_power_on = False           # Memory ▸ Delete EPROM (DG 2908-2946)
-        self.listeners: list[Callable[[LinkEvent], None]] = []
+        self.listeners: list[Callable[[LinkEvent], object]] = []
         self.controller.listeners.append(self._forward)
         self.stream_signals: list[tuple[str, Callable]] = []
         self.stream_interval = 0
@@ -350,8 +350,9 @@ class ControllerService:
         groups = {"ram": (19, 32, 33), "user": (19,), "arrays": (), "app": (19, 32, 33), "option": (32, 33)}
         if what not in groups:
             raise ValueError(f"save_memory {what!r}: choose one of {', '.join(groups)}")
-        if groups[what]:
-            self.controller.params.save(lambda index, keep=groups[what]: index // 100 in keep)
+        keep = groups[what]
+        if keep:
+            self.controller.params.save(lambda index: index // 100 in keep)
 
     def op_delete_eprom(self) -> None:
         self.wipe_at_power_on = True

@@ -65,7 +65,7 @@ def _signal_subs(od) -> dict[str, int]:
 class PdoStream:
     """One Free Run stream of a CanopenLink: `start(signals, interval_ms)`, frames via `on_frame`, `stop()`."""
 
-    def __init__(self, sdo, network, node_id: int, od, publish: Callable[[LinkEvent], None]):
+    def __init__(self, sdo, network, node_id: int, od, publish: Callable[[LinkEvent], object]):
         self.sdo, self.network, self.node_id, self.od, self.publish = sdo, network, node_id, od, publish
         self.signals: list[str] = []
         self.interval = 1

@@ -35,6 +35,7 @@ from typing import Any
 
 import can
 import canopen
+from canopen.objectdictionary import ODVariable
 from canopen.sdo import SdoAbortedError, SdoCommunicationError
 
 from motiontool.comms.canopen import objects
@@ -231,10 +232,13 @@ class CanopenLink(RemoteLink):
             time.sleep(QUIET_S / 4)
 
     def _disconnect(self) -> None:
-        with contextlib.suppress(Exception):
-            self.network.notifier.stop(1.0)
-        with contextlib.suppress(Exception):
-            self.network.bus.shutdown()
+        notifier, bus = self.network.notifier, self.network.bus
+        if notifier is not None:
+            with contextlib.suppress(Exception):
+                notifier.stop(1.0)
+        if bus is not None:
+            with contextlib.suppress(Exception):
+                bus.shutdown()
 
     def _configure(self) -> None:
         """What the link was asked to change (a heartbeat time; NMT Start once Free Run needed it), else only
@@ -390,7 +394,13 @@ class CanopenLink(RemoteLink):
 
     def read_object(self, index: int, sub: int = 0):
         """One object by SDO, decoded as the EDS says (an integer, a text or bytes)."""
-        var = self.od[index] if sub == 0 and not hasattr(self.od[index], "subindices") else self.od[index][sub]
+        entry = self.od[index]
+        if isinstance(entry, ODVariable):
+            if sub:
+                raise LinkError(f"object 0x{index:04X} has no sub-index {sub}")
+            var = entry
+        else:
+            var = entry[sub]
         return var.decode_raw(self._sdo(lambda sdo: sdo.upload(index, sub)))
 
     def _stream(self, signals: list[str], interval_ms: int) -> None:
@@ -525,8 +535,9 @@ def _no_blocks(exc: Exception) -> bool:
 def scan(interface: str, channel: str, ids=range(1, 128), wait_s: float = 0.3, bitrate: int | None = None
          ) -> list[int]:
     """Node ids that answer an SDO request for 0x1000 (device type), in ascending order."""
-    network = canopen.Network(open_bus(interface, channel, bitrate))
-    network.notifier = can.Notifier(network.bus, network.listeners, 0.5)
+    bus = open_bus(interface, channel, bitrate)
+    network = canopen.Network(bus)
+    network.notifier = notifier = can.Notifier(bus, network.listeners, 0.5)
     try:
         found: set[int] = set()
         for node in ids:
@@ -535,8 +546,8 @@ def scan(interface: str, channel: str, ids=range(1, 128), wait_s: float = 0.3, b
         time.sleep(wait_s)
         return sorted(found)
     finally:
-        network.notifier.stop(1.0)
-        network.bus.shutdown()
+        notifier.stop(1.0)
+        bus.shutdown()
 
 
 def open_canopen(spec: LinkSpec) -> CanopenLink:

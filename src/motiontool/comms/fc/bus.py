@@ -248,7 +248,7 @@ def _open_port(settings: BusSettings):
             if settings.parity == "N" or not os.path.realpath(settings.url).startswith("/dev/pts/"):
                 raise
             return open_with("N")
-    except (OSError, ValueError, *_TERMIOS_ERRORS) as exc:
+    except _OPEN_ERRORS as exc:
         raise LinkError(f"cannot open {settings.url}: {exc}") from None
 
 
@@ -258,3 +258,4 @@ try:  # the settings of a POSIX port are refused with termios.error (not an OSEr
     _TERMIOS_ERRORS: tuple[type[Exception], ...] = (termios.error,)
 except ImportError:  # Windows
     _TERMIOS_ERRORS = ()
+_OPEN_ERRORS: tuple[type[Exception], ...] = (OSError, ValueError, *_TERMIOS_ERRORS)

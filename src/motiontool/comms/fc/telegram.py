@@ -145,7 +145,7 @@ def encode(t: Telegram) -> bytes:
     if t.text is not None:
         data = struct.pack(">HHI", t.pke, t.ind, t.pwe) + t.text
     elif t.pke is None:
-        data = struct.pack(">HH", *t.pcd)
+        data = struct.pack(">HH", *(t.pcd or (0, 0)))
     else:
         data = struct.pack(">HHIHH", t.pke, t.ind, t.pwe, *(t.pcd or (0, 0)))
     body = bytes((STX, len(data) + 2, t.adr)) + data

@@ -53,6 +53,7 @@ def _object_sections(obj: objdict.Obj) -> list[str]:
     if obj.kind == "VAR":
         return [f"[{head}]", *_entry_lines(obj.entries[0], obj.name), ""]
     if obj.count:   # a compact ARRAY: one section describes the sub-indices 1..count (CiA 306 CompactSubObj)
+        assert obj.element is not None  # a compact ARRAY builds its sub-indices (objdict.Obj)
         template = obj.element(obj.count)
         return [f"[{head}]", f"ParameterName={obj.name}", "ObjectType=0x8",
                 f"DataType=0x{objdict.DATATYPES[template.datatype][0]:04X}", f"AccessType={template.access}",

@@ -45,7 +45,8 @@ class ControllerNode(canopen.LocalNode):
 
     def __init__(self, node_id: int, od: canopen.ObjectDictionary, drive, drive_node, eds_text: str):
         super().__init__(node_id, od)
-        self.sdo = BlockSdoServer(0x600 + node_id, 0x580 + node_id, self)   # before the network subscribes it
+        # before the network subscribes it
+        self.sdo: BlockSdoServer = BlockSdoServer(0x600 + node_id, 0x580 + node_id, self)
         self.sdo2 = BlockSdoServer(SDO2_RX + node_id, SDO2_TX + node_id, _SecondChannel(self))
         self.drive = drive
         self.drive_node = drive_node
@@ -134,16 +135,17 @@ class ControllerNode(canopen.LocalNode):
         if index == objects.STORE_EDS:
             raise SdoAbortedError(objdict.ABORT_READ_ONLY)
         service = self.drive_node.service
-        request = {objects.PROGRAM_IMAGE: ("download", {"image": base64.b64encode(data).decode("ascii"),
-                                                        "number": None, "name": ""})}.get(index)
         if index == objects.PROGRAM_CONTROL:
             command = objdict.decode(data, "INTEGER32")
             op = {objects.START: "start", objects.BREAK: "break", objects.CONTINUE: "continue"}.get(command)
             if op is None:
                 raise SdoAbortedError(objdict.ABORT_VALUE)
-            request = (op, {})
+            request = Request(op, {})
+        else:   # PROGRAM_IMAGE, the last of SERVICE_OBJECTS
+            request = Request("download", {"image": base64.b64encode(data).decode("ascii"), "number": None,
+                                           "name": ""})
         with self.drive.lock:
-            response = service.handle(Request(request[0], request[1]))
+            response = service.handle(request)
         if not response.ok:
             raise SdoAbortedError(objdict.ABORT_STATE if index == objects.PROGRAM_CONTROL else objdict.ABORT_STORE)
 

@@ -23,7 +23,7 @@ _HEADER = struct.Struct("<BHB")
 class BlockSdoServer(SdoServer):
     """An SdoServer that also serves block downloads and block uploads."""
 
-    def __init__(self, rx_cobid, tx_cobid, node):
+    def __init__(self, rx_cobid: int, tx_cobid: int, node) -> None:
         super().__init__(rx_cobid, tx_cobid, node)
         self._block: _BlockDownload | _BlockUpload | None = None
         self._last = 0.0

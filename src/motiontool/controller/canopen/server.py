@@ -51,8 +51,9 @@ class CanopenDrive:
         text = eds.eds_text()
         od = canopen.import_od(str(eds_path()))
         wanted = {0, *(0x600 + n for n in drive.nodes), *(0x100 + n for n in drive.nodes)}  # NMT, SDO 1 and 2
-        self.network = canopen.Network(open_local_bus(interface, channel, wanted))
-        self.network.notifier = can.Notifier(self.network.bus, self.network.listeners, 0.5)
+        self._bus = open_local_bus(interface, channel, wanted)
+        self.network = canopen.Network(self._bus)
+        self.network.notifier = self._notifier = can.Notifier(self._bus, self.network.listeners, 0.5)
         self.nodes: dict[int, ControllerNode] = {}
         for n, drive_node in drive.nodes.items():
             node = ControllerNode(n, od, drive, drive_node, text)
@@ -113,8 +114,8 @@ class CanopenDrive:
             self._bridge.on_frame = None
         if self._thread is not None:
             self._thread.join(timeout=2.0)
-        self.network.notifier.stop(2.0)
-        self.network.bus.shutdown()
+        self._notifier.stop(2.0)
+        self._bus.shutdown()
         self._bridge.shutdown()
 
 

@@ -108,6 +108,7 @@ def build_drive(options: DriveOptions, err: TextIO = sys.stderr) -> VirtualDrive
             print(d.format(), file=err)
         if not result.ok:
             return None
+        assert result.image is not None  # compile_source leaves it None only with an error
         drive.install_program(n, result.image)
     return drive
 
