@@ -263,3 +263,16 @@ def test_the_gear_changes_during_synchronisation():
     assert ctl.axis.sync.locked and ctl.axis.profile.velocity == pytest.approx(15.0)   # 10 × 3/2
     moved = ctl.axis.sync.target - cpos
     assert moved == pytest.approx((ctl.master.mapos - mapos) * 3 / 2, abs=2)     # the target went on from there
+
+
+@pytest.mark.parametrize("sync", ["SYNCP", "SYNCV", "SYNCM"])
+def test_deforigin_during_synchronisation(sync):
+    """CR 863: "With the DEFORIGIN command the current position is set as the zero point" (the sample's output,
+    CR 880: "Position after defining new origin 0"). During a synchronisation too: before commit db586ff the
+    program stopped with error 199 (SyncMotion's attribute `shift` hid the method DEFORIGIN calls). The slave
+    then follows the master on from the new zero: 500 Hz × 4 qc (decisions K15) = 400 qc in 200 ms."""
+    run = run_source(f"VEL 100\nACC 100\nDEC 100\nPULSVEL 500\n{sync}\nDELAY 500\nDEFORIGIN\nPRINT APOS\n"
+                     "DELAY 200\nPRINT APOS\n", 3000)
+    assert [e.text for e in run.errors] == []
+    assert run.prints[0] == "0"
+    assert abs(int(run.prints[1]) - 400) <= 5
