@@ -1,135 +1,41 @@
 """The rule of issue 27 item 2: no link request from the IDE runs on the GUI thread. On a 9600-baud line one
 exchange takes a quarter of a second or more, and a request asked on the GUI thread stops the window that long.
 
-The IDE's default interface here is a link scheme registered by this test: each of its controllers is an embedded
-simulator whose every request (and the opening of the link, and the scan of the interface) notes whether it ran on
+The IDE's default interface here is a link scheme (gui_thread_check.py) whose every request notes whether it ran on
 the GUI thread. Each case drives one user action as a user does (menu actions, clicks, dialogs answered) and then
 names the requests that action made on the GUI thread. An action not yet moved off the GUI thread is marked
-xfail(strict): the list of marks is what remains of the item.
+xfail(strict): the list of marks is what remains of the item. The tools' windows (CAM and Array editors, the
+scope's TESTSETP and Tune, Restart) have their cases in test_link_off_gui_thread_tools.py.
 """
 
 from __future__ import annotations
 
 import threading
 import time
-from collections.abc import Callable
-from dataclasses import dataclass
 
 import pytest
 from PySide6.QtCore import QPoint, Qt, QTimer
 from PySide6.QtGui import QContextMenuEvent
 from PySide6.QtWidgets import QApplication, QMenu, QMessageBox, QToolButton
 
-from motiontool.comms import links
-from motiontool.comms.link import Link
-from motiontool.comms.links import open_link, register_link_scheme
-from motiontool.ui.controllers import InterfaceConfig
 from tests.modal import answering, button_reply, cancel_reply, file_reply, ok_reply, text_reply
-
-SCHEME = "gui-thread-check"
-PROGRAM = "x = 1\nPRINT \"ran \", x\n"
-
-
-class Recorder:
-    """The link requests made, in order, each with whether it ran on the GUI thread."""
-
-    def __init__(self) -> None:
-        self._lock = threading.Lock()
-        self.requests: list[tuple[str, bool]] = []
-
-    def note(self, op: str) -> None:
-        with self._lock:
-            self.requests.append((op, threading.current_thread() is threading.main_thread()))
-
-    def clear(self) -> None:
-        with self._lock:
-            self.requests.clear()
-
-    def taken(self) -> list[tuple[str, bool]]:
-        with self._lock:
-            return list(self.requests)
-
-
-RECORD = Recorder()
-HOLD: dict[str, tuple[threading.Event, threading.Event]] = {}   # op → (it arrived, let it through)
-
-
-class RecordingLink(Link):
-    """An embedded simulator whose requests are noted (every typed request ends in `call`, then `request`)."""
-
-    def __init__(self, inner: Link) -> None:
-        super().__init__()
-        self.inner = inner
-        self.kind = inner.kind
-        self.status_interval_s = inner.status_interval_s
-
-    def request(self, request):
-        RECORD.note(request.op)
-        if (hold := HOLD.pop(request.op, None)) is not None:   # a slow line, as long as the test wants
-            arrived, through = hold
-            arrived.set()
-            through.wait(30)
-        return self.inner.request(request)
-
-    def close(self) -> None:
-        self.inner.close()
-
-    @property
-    def alive(self) -> bool:
-        return getattr(self.inner, "alive", True)
-
-    @property
-    def virtual_time(self) -> bool:
-        return self.inner.virtual_time
-
-    def flush_events(self) -> None:
-        self.inner.flush_events()
-
-    def subscribe(self, callback) -> None:
-        self.inner.subscribe(callback)
-
-    def unsubscribe(self, callback) -> None:
-        self.inner.unsubscribe(callback)
-
-
-def _open(_spec) -> Link:
-    RECORD.note("open")
-    return RecordingLink(open_link("sim,realtime=50"))
-
-
-def _scan(_spec, ids) -> list[int]:
-    RECORD.note("scan")
-    return list(ids)
+from tests.ui.gui_thread_check import (
+    HOLD,
+    RECORD,
+    Case,
+    checking,
+    click,
+    connect,
+    no_request_on_the_gui_thread,
+    params,
+    program,
+    said,
+)
 
 
 @pytest.fixture
 def checked(window):
-    """The window with this test's interface as its default (controllers 1 and 2), nothing connected yet."""
-    register_link_scheme(SCHEME, _open, f"{SCHEME}:NAME", "test: notes the thread of each request", scan=_scan)
-    window.controllers.set_default(InterfaceConfig(kind=SCHEME, port="here", first=1, last=2))
-    RECORD.clear()
-    yield window
-    links._SCHEMES.pop(SCHEME, None)   # other tests list the schemes (--help texts): this one is not theirs
-
-
-def click(qtbot, widget) -> None:
-    qtbot.mouseClick(widget, Qt.MouseButton.LeftButton)
-
-
-def connect(qtbot, w) -> None:
-    """Setup for the actions on a connected controller: Esc connects to the default one (DG 2054-2062)."""
-    w.actions_by_text["Break"].trigger()
-    qtbot.waitUntil(lambda: w.bridge.connected, timeout=20_000)
-
-
-def program(w, tmp_path) -> None:
-    editor = w.current_editor() or w.new_file()
-    editor.setPlainText(PROGRAM)
-    w.save(editor=editor, path=tmp_path / "ran.m")
-
-
-def said(qtbot, w, text: str) -> None:
-    qtbot.waitUntil(lambda: text in w.messages.toPlainText(), timeout=20_000)
+    yield from checking(window)
 
 
 # --- the actions --------------------------------------------------------------------------------------------------
@@ -389,12 +295,6 @@ def every_controller(entry: str, says: str):
     return act
 
 
-@dataclass(frozen=True)
-class Case:
-    action: Callable
-    todo: str = ""          # why it still runs on the GUI thread (xfail), "" when it does not
-
-
 CASES = {
     "Select Controller": Case(select_controller),
     "connect (Esc)": Case(connect_with_esc),
@@ -422,20 +322,10 @@ CASES = {
 }
 
 
-def _params():
-    for name, case in CASES.items():
-        marks = [pytest.mark.xfail(strict=True, reason=case.todo)] if case.todo else []
-        yield pytest.param(name, id=name, marks=marks)
-
-
-@pytest.mark.parametrize("name", list(_params()))
+@pytest.mark.parametrize("name", list(params(CASES)))
 def test_no_link_request_of_the_action_runs_on_the_gui_thread(checked, qtbot, tmp_path, name):
     CASES[name].action(qtbot, checked, tmp_path)
-    QApplication.processEvents()
-    taken = RECORD.taken()
-    assert taken, f"{name}: no link request at all (the case tests nothing)"
-    on_gui = [op for op, gui in taken if gui]
-    assert not on_gui, f"{name}: requests on the GUI thread: {', '.join(dict.fromkeys(on_gui))}"
+    no_request_on_the_gui_thread(name)
 
 
 def test_the_recorder_sees_a_request_on_the_gui_thread(checked):
