@@ -1,4 +1,4 @@
-"""`motiontool cam` through a parser built with camcli.add_parser; .dat export/import."""
+"""`motiontool cam` through a parser built with cli.cam.add_parser; .dat export/import."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import argparse
 import pytest
 
 from motiontool.camcurve.layout import encode
-from motiontool.cameditor import camcli
+from motiontool.cli import cam
 from motiontool.formats.dat import DatError, dat_text, parse_dat, read_dat, write_dat
 from motiontool.formats.zbc import read_config
 from tests.camcurve.conftest import stamping_curve
@@ -18,9 +18,9 @@ STAMPING = ["--name", "stamping", "--master-length", "4000", "--intervals", "40"
 
 def run(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="motiontool")
-    camcli.add_parser(parser.add_subparsers(dest="command"))
+    cam.add_parser(parser.add_subparsers(dest="command"))
     args = parser.parse_args(argv)
-    return args.func(args)
+    return cam.run(args)
 
 
 def test_build_and_info_stamping(tmp_path, capsys):

@@ -132,7 +132,7 @@ def test_reading_a_canopen_node_changes_neither_its_nmt_state_nor_its_heartbeat(
     100 ms, and left both so."""
     import can
 
-    from motiontool.headless_params import params_on_link
+    from motiontool.cli.params import params_on_link
 
     with drive_process("--node", "1", listen=CANOPEN) as drive:
         bus = _bare_client(drive.url)
@@ -228,7 +228,7 @@ def test_the_fc_300s_own_parameters_over_the_fc_link():
     """Issue 25 item 2: "The same parameters are readable and writable over the FC link (`params --link fc:… --get
     4-13`)". The drive's parameter 4-13 travels as PNU 413 beside the option's 32-60 (PNU 3260); groups 16-** are
     read only (DG 7594), a value beyond the range is refused by the drive with words."""
-    from motiontool.headless_params import params_on_link
+    from motiontool.cli.params import params_on_link
 
     rows = []
     with drive_process("--node", "1") as drive:

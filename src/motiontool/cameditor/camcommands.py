@@ -1,4 +1,4 @@
-"""The `motiontool cam` commands (build, info, export, import); their parser is in camcli.py.  Qt-free.
+"""The `motiontool cam` commands (build, info, export, import); their parser is in cli/cam.py.  Qt-free.
 
 Every command takes the argparse Namespace and returns the exit code (0 ok, 1 error on stderr).
 """

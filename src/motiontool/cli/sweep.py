@@ -16,7 +16,7 @@ EXIT_INTERRUPTED = 130  # 128 + SIGINT, as a shell reports a program stopped by 
 PROG = "motiontool sweep"
 
 
-def add_parser(sub) -> None:
+def add_parser(sub) -> argparse.ArgumentParser:
     p = sub.add_parser("sweep", help="run a program once per point of a parameter grid and measure each run",
                        description="Runs FILE.m (or FILE.dpl on a simulated APC) on a fresh simulated controller "
                                    "once per point: the grid of every --vary, the lines of --points, or --random "
@@ -45,7 +45,7 @@ def add_parser(sub) -> None:
                    help="where the points run: here (default) or on a Dask distributed cluster's scheduler")
     p.add_argument("--include", "-I", action="append", type=Path, default=[], metavar="DIR")
     p.add_argument("-o", "--output", type=Path, required=True, metavar="OUT.csv")
-    p.set_defaults(func=run)
+    return p
 
 
 def run(args: argparse.Namespace) -> int:

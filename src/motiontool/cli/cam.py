@@ -1,25 +1,14 @@
 """`motiontool cam` sub-commands: build a curve into a .zbc file, list the curves of a file.  Qt-free.
 
-Wiring (cli.py): ``camcli.add_parser(sub)`` where ``sub`` is the top-level ``add_subparsers`` object; every
-command function (camcommands.py) takes the argparse Namespace and returns the exit code (0 ok, 1 error on
-stderr). This module only defines the parser: the commands and the curve maths (scipy) are imported when a
-``cam`` command runs, so building the top-level parser costs nothing at GUI start.
+The commands and the curve maths (scipy) are in cameditor/camcommands.py, imported when a ``cam`` command runs, so
+building the top-level parser costs nothing at GUI start; each takes the argparse Namespace and returns the exit
+code (0 ok, 1 error on stderr).
 """
 
 from __future__ import annotations
 
 import argparse
 from pathlib import Path
-
-
-def _command(name: str):
-    def run(args: argparse.Namespace) -> int:
-        from motiontool.cameditor import camcommands
-
-        return getattr(camcommands, name)(args)
-
-    run.__name__ = name
-    return run
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
@@ -50,20 +39,22 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     p.add_argument("--gradients", metavar="START,END", help="start/end gradients (UU/MU) of the SPECIFIED types")
     p.add_argument("--no-interpolation", action="store_true", help="store no interpolation points")
     p.add_argument("-o", "--output", type=Path, required=True, metavar="FILE.zbc")
-    p.set_defaults(func=_command("cmd_build"))
 
     p = sub.add_parser("info", help="one line per curve: NAME: N elements, master L, slave S, K intervals")
     p.add_argument("file", type=Path, metavar="FILE.zbc")
-    p.set_defaults(func=_command("cmd_info"))
 
     p = sub.add_parser("export", help="write one curve's controller array as a .dat file")
     p.add_argument("file", type=Path, metavar="FILE.zbc")
     p.add_argument("--curve", help="curve name (default: the first curve)")
     p.add_argument("-o", "--output", type=Path, required=True, metavar="CURVE.dat")
-    p.set_defaults(func=_command("cmd_export"))
 
     p = sub.add_parser("import", help="add/replace a curve from a .dat file written by export")
     p.add_argument("dat", type=Path, metavar="CURVE.dat")
     p.add_argument("-o", "--output", type=Path, required=True, metavar="FILE.zbc")
-    p.set_defaults(func=_command("cmd_import"))
     return cam
+
+
+def run(args: argparse.Namespace) -> int:
+    from motiontool.cameditor import camcommands
+
+    return getattr(camcommands, f"cmd_{args.cam_command}")(args)

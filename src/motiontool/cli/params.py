@@ -1,16 +1,50 @@
-"""`motiontool params --link SPEC`: read and write parameters of a controller over a link (decision F18)."""
+"""`motiontool params`: the MCO 305 parameters, one per line; with --link, read and write them on a controller
+(decision F18)."""
 
 from __future__ import annotations
 
+import argparse
 import re
 import sys
 from typing import TextIO
 
+from motiontool.cli.common import add_link_option
 from motiontool.cliargs import PARAMETER_VALUE, BadNumber, shown, whole
 from motiontool.comms.protocol import LinkError
-from motiontool.headless import open_run_link
 
 _LCP_RE = re.compile(r"([0-9]{1,2})-([0-9]{1,2})")
+
+
+def add_parser(sub) -> argparse.ArgumentParser:
+    p = sub.add_parser("params", help="list MCO 305 parameters, one per line")
+    p.add_argument("--find", metavar="TEXT", help="only parameters whose number, name or text contains TEXT")
+    p.add_argument("--group", metavar="PREFIX", help="only parameters of this group, e.g. 32-6")
+    p.add_argument("--get", action="append", default=[], metavar="KEY", help="read a parameter from the controller")
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                   help="write a parameter on the controller (raw value) and read it back")
+    add_link_option(p, "with --link alone: read the live value of every listed parameter")
+    return p
+
+
+def run(args: argparse.Namespace) -> int:
+    from motiontool.paramdb import ParameterError, database
+
+    try:
+        db = database()
+    except ParameterError as exc:
+        print(f"motiontool params: {exc}", file=sys.stderr)
+        return 1
+    rows = list(db)
+    if args.group:
+        rows = [p for p in rows if p in db.group(args.group)]
+    if args.find:
+        found = set(db.find(args.find))
+        rows = [p for p in rows if p in found]
+    if args.link or args.get or args.set:  # live values from a controller
+        return params_on_link(args.link, args.get, args.set, rows)
+    for parameter in rows:
+        print(parameter.format_line())
+    return 0 if rows else 1
 
 
 def _row(db, key: str, option: str) -> tuple[str, str]:
@@ -36,6 +70,7 @@ def params_on_link(spec: str | None, gets: list[str], sets: list[str], rows, out
     """`motiontool params --link SPEC [--set KEY=VALUE]… [--get KEY]…`: writes first (each read back), then reads;
     without --get/--set every parameter of `rows` is read. One line per parameter: `32-60 KPROP 50` (the raw
     value the link carries). Exit 0, or 1 after the first refusal (stderr names the parameter)."""
+    from motiontool.headless import open_run_link  # the link machinery only when a controller is asked
     from motiontool.paramdb import database
 
     out, err = out or sys.stdout, err or sys.stderr  # looked up now: a caller may have redirected them
