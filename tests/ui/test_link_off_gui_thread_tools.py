@@ -106,10 +106,10 @@ def restart(qtbot, w, tmp_path) -> None:
 
 
 CASES = {
-    "CAM-Editor Read from controller": Case(cam_read, "upload_config on the GUI thread"),
-    "CAM-Editor Write to controller": Case(cam_write, "download_config on the GUI thread"),
-    "Array Editor opens and reads": Case(array_editor, "ArrayList.read_controller on the GUI thread"),
-    "Array Editor Write to controller": Case(array_write, "ArrayList.write_controller on the GUI thread"),
+    "CAM-Editor Read from controller": Case(cam_read),
+    "CAM-Editor Write to controller": Case(cam_write),
+    "Array Editor opens and reads": Case(array_editor),
+    "Array Editor Write to controller": Case(array_write),
     "Clear Error connects first": Case(clear_error),
     "Restart connects first": Case(restart),
 }

@@ -55,6 +55,33 @@ def parameter_of(record: Record) -> Parameter | None:
 
 
 @dataclass
+class ControllerValues:
+    """What Read from controller asked the link: its arrays, the parameter rows offered and the values read."""
+
+    arrays: list
+    records: list[Record]
+    live: dict[tuple, int | float]
+
+
+def fetch_controller(link: Link, parameters: bool = True) -> ControllerValues:
+    """Every array and parameter value of the controller; link requests only, so it may run on a thread."""
+    live: dict[tuple, int | float] = {}
+    arrays = link.list_arrays()
+    for info in arrays:
+        for i, value in enumerate(link.read_array(info.index), start=1):
+            live[("Array", info.index, i)] = value
+    records = []
+    for p in database():
+        if not parameters and not p.number.startswith("19-"):
+            continue  # "Array Editor parameter support" off: arrays and user parameters only (DG L4082)
+        record = parameter_record(p)
+        records.append(record)
+        with contextlib.suppress(LinkError):  # a parameter this controller lacks stays blank
+            live[record.key] = p.from_raw(link.read_parameter(p.number))
+    return ControllerValues(arrays, records, live)
+
+
+@dataclass
 class Row:
     record: Record
     controller: int | float | None = None   # the live value; None = blank (offline or not on the controller)
@@ -121,21 +148,13 @@ class ArrayList:
     def read_controller(self, link: Link, parameters: bool = True, now: str = "") -> None:
         """Read every array and parameter. Without a template the rows are the controller's items; with one,
         the template's rows get the controller's values and items missing on the controller turn green."""
-        live: dict[tuple, int | float] = {}
-        arrays = link.list_arrays()
-        for info in arrays:
-            for i, value in enumerate(link.read_array(info.index), start=1):
-                live[("Array", info.index, i)] = value
-        param_records = []
-        for p in database():
-            if not parameters and not p.number.startswith("19-"):
-                continue  # "Array Editor parameter support" off: arrays and user parameters only (DG L4082)
-            record = parameter_record(p)
-            param_records.append(record)
-            with contextlib.suppress(LinkError):  # a parameter this controller lacks stays blank
-                live[record.key] = p.from_raw(link.read_parameter(p.number))
+        self.take_controller(fetch_controller(link, parameters), now)
+
+    def take_controller(self, read: ControllerValues, now: str = "") -> None:
+        """The rows of what fetch_controller read (the GUI thread's half of Read from controller)."""
+        arrays, live = read.arrays, read.live
         if self.template is None:
-            rows = [Row(r) for r in param_records]
+            rows = [Row(r) for r in read.records]
             rows += [Row(Record("Array", info.index, i, info.name if i == 1 else ""))
                      for info in arrays for i in range(1, info.size + 1)]
             self.rows = rows

@@ -11,6 +11,7 @@ from PySide6.QtCore import QObject, Signal
 
 from motiontool.comms.link import Link
 from motiontool.comms.protocol import LinkEvent, Status
+from motiontool.ui.link_jobs import waiting
 from motiontool.ui.status_worker import StatusWorker
 
 
@@ -68,6 +69,12 @@ class LinkBridge(QObject):
                 self.link.close()
             self.link = None
             self.connection_changed.emit("closed")
+
+    @staticmethod
+    def waiting(window, text: str, work):
+        """link_jobs.waiting for the windows outside ui/ (CAM and Array editors): they get the bridge, and the
+        layers keep them from importing ui/ (decision I34)."""
+        return waiting(window, text, work)
 
     def poll(self) -> None:
         """Ask for the status now (after a command, on a program event): it arrives as `status_changed` when it

@@ -22,7 +22,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
-from motiontool.arrayeditor.rows import ArrayList, Row
+from motiontool.arrayeditor.rows import ArrayList, Row, fetch_controller
 from motiontool.comms.protocol import LinkError
 from motiontool.fileio import reason
 from motiontool.formats.zba import ZbaError, read_zba, write_zba
@@ -235,10 +235,12 @@ class ArrayEditor(QMainWindow):
             self._error("No controller is connected: select one in the APOSS window first.")
             return False
         try:
-            self.data_list.read_controller(link, now=time.strftime("%Y:%m:%d %H:%M"))
+            read = self.bridge.waiting(self, f"Controller {self.bridge.controller_id}: reading arrays and "
+                                       "parameters …", lambda: fetch_controller(link))
         except LinkError as exc:
             self._error(f"Read from controller: {exc}")
             return False
+        self.data_list.take_controller(read, now=time.strftime("%Y:%m:%d %H:%M"))
         self._refresh()
         return True
 
@@ -247,8 +249,9 @@ class ArrayEditor(QMainWindow):
         if link is None:
             self._error("No controller is connected.")
             return False
-        try:
-            problems = self.data_list.write_controller(link)
+        try:   # the rows are only read there; user input waits, so nobody edits them meanwhile
+            problems = self.bridge.waiting(self, f"Controller {self.bridge.controller_id}: writing arrays and "
+                                           "parameters …", lambda: self.data_list.write_controller(link))
         except LinkError as exc:
             problems = [str(exc)]
         if problems:
@@ -307,9 +310,9 @@ class ArrayEditor(QMainWindow):
             return False
         self.data_list.load_template(zba)
         self.path = path
+        self._refresh()   # the table shows the template's rows while the controller's values are read
         if self._link() is not None:
             self.read_controller()
-        self._refresh()
         return True
 
     def save(self) -> bool:

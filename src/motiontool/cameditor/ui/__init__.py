@@ -18,7 +18,8 @@ def open_cam_editor(main_window):
             from motiontool.cameditor.ui.window import CamEditor
 
             editor = CamEditor(link_provider=lambda: main_window.bridge.link, parent=main_window,
-                               controller=lambda: getattr(main_window.bridge, "controller_id", None))
+                               controller=lambda: getattr(main_window.bridge, "controller_id", None),
+                               wait=main_window.bridge.waiting)
             editor.setWindowFlag(Qt.WindowType.Window, True)
             editor.setAttribute(Qt.WidgetAttribute.WA_DeleteOnClose, True)
             editor.destroyed.connect(lambda *_: setattr(main_window, "cam_editor", None))

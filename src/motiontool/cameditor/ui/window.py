@@ -66,10 +66,13 @@ class Slot:
 
 class CamEditor(EditsMixin, QMainWindow):
     def __init__(self, link_provider: Callable[[], Link | None] | None = None, parent=None,
-                 controller: Callable[[], int | None] | None = None) -> None:
+                 controller: Callable[[], int | None] | None = None, wait=None) -> None:
         super().__init__(parent)
         self.link_provider = link_provider or (lambda: None)
         self.controller = controller or (lambda: None)  # the number of the controller Read/Write talk to
+        # wait(window, text, work): the IDE's link_jobs.waiting (the request on a thread while this window paints);
+        # an editor without the IDE (a test's embedded link) asks in place
+        self.wait = wait or (lambda _window, _text, work: work())
         self.confirm = True  # ask before discarding changes / overwriting a controller (tests switch it off)
         self.parameters: dict[str, int | float] = {}
         self.slots: list[Slot] = []
@@ -452,13 +455,18 @@ class CamEditor(EditsMixin, QMainWindow):
         if not self._discard_ok():
             return False
         try:
-            config = upload_config(link)
+            config = self.wait(self, f"{self._controller_name()}: reading parameters and arrays …",
+                               lambda: upload_config(link))
         except (LinkError, ConfigError) as exc:
             self.message(f"Read from controller failed: {exc}")
             return False
         self.load_config(config, self.path)
         self._set_modified(modified=True)
         return True
+
+    def _controller_name(self) -> str:
+        cid = self.controller()
+        return f"Controller {cid}" if cid else "The controller"
 
     def write_to_controller(self) -> bool:
         """Download parameters and arrays; they overwrite the controller's [ide-spec 4.3, DG L3487]."""
@@ -472,7 +480,9 @@ class CamEditor(EditsMixin, QMainWindow):
             if answer != QMessageBox.StandardButton.Yes:
                 return False
         try:
-            download_config(link, self.config())
+            config = self.config()
+            self.wait(self, f"{self._controller_name()}: writing parameters and arrays …",
+                      lambda: download_config(link, config))
         except (CurveError, ConfigError, LinkError) as exc:
             self.message(f"Write to controller failed: {exc}")
             return False
