@@ -7,7 +7,8 @@ from __future__ import annotations
 
 import pytest
 from PySide6.QtCore import Qt
-from PySide6.QtWidgets import QLineEdit, QMessageBox
+from PySide6.QtGui import QContextMenuEvent
+from PySide6.QtWidgets import QApplication, QLineEdit, QMenu, QMessageBox
 
 from tests.modal import answering, button_reply
 from tests.ui.gui_thread_check import (
@@ -105,6 +106,54 @@ def restart(qtbot, w, tmp_path) -> None:
     said(qtbot, w, "Controller 1: restarted (switched off and on)")
 
 
+# --- the scope's TESTSETP (DG 5326-5347) ---------------------------------------------------------------------------
+RECORDS = ("DIM test[3000]\nTESTSETP 1 4097 4098 0x01270001 test\nTESTSTART 0\nPOSA 2000\nDELAY 1500\nTESTSTOP 0\n"
+           "PRINT \"recorded\"\n")
+
+
+def recorded(qtbot, w, tmp_path) -> None:
+    connect(qtbot, w)
+    editor = w.current_editor() or w.new_file()
+    editor.setPlainText(RECORDS)
+    w.save(editor=editor, path=tmp_path / "records.m")
+    w.actions_by_text["Execute"].trigger()
+    said(qtbot, w, "recorded")
+    w.actions_by_text["Oscilloscope"].trigger()
+    scope = w._scopes[-1]
+    scope.ask = False
+    return scope
+
+
+def scope_testsetp(qtbot, w, tmp_path) -> None:
+    """A program records with TESTSETP; the scope's TESTSETP variant lists the recordings and uploads the newest."""
+    scope = recorded(qtbot, w, tmp_path)
+    RECORD.clear()
+    scope.mode_actions["testsetp"].trigger()
+    qtbot.waitUntil(lambda: len(scope.scope.curves) == 3, timeout=20_000)   # REG_ACTPOS, REG_COMPOS, the SYSVAR
+    scope.close()
+
+
+def scope_reload(qtbot, w, tmp_path) -> None:
+    """The curve list's Reload & Redisplay on a TESTSETP curve reads its recording again (DG 4850-4876)."""
+    scope = recorded(qtbot, w, tmp_path)
+    scope.mode_actions["testsetp"].trigger()
+    qtbot.waitUntil(lambda: len(scope.scope.curves) == 3, timeout=20_000)
+    tree = scope.list
+    item = next(tree.topLevelItem(g).child(k) for g in range(tree.topLevelItemCount())
+                for k in range(tree.topLevelItem(g).childCount()))
+    pos = tree.visualItemRect(item).center()
+    RECORD.clear()
+    QApplication.sendEvent(tree.viewport(), QContextMenuEvent(QContextMenuEvent.Reason.Mouse, pos,
+                                                              tree.viewport().mapToGlobal(pos)))
+    qtbot.waitUntil(lambda: isinstance(QApplication.activePopupWidget(), QMenu), timeout=20_000)
+    menu = QApplication.activePopupWidget()
+    action = next(a for a in menu.actions() if a.text() == "Reload & Redisplay")
+    qtbot.mouseClick(menu, Qt.MouseButton.LeftButton, pos=menu.actionGeometry(action).center())
+    qtbot.waitUntil(lambda: any(op == "upload_recording" for op, _ in RECORD.taken()), timeout=20_000)
+    QApplication.processEvents()
+    scope.close()
+
+
 CASES = {
     "CAM-Editor Read from controller": Case(cam_read),
     "CAM-Editor Write to controller": Case(cam_write),
@@ -112,6 +161,8 @@ CASES = {
     "Array Editor Write to controller": Case(array_write),
     "Clear Error connects first": Case(clear_error),
     "Restart connects first": Case(restart),
+    "Oscilloscope TESTSETP": Case(scope_testsetp, "list_testsetp and load_testsetp on the GUI thread"),
+    "Oscilloscope TESTSETP Reload": Case(scope_reload, "reload_testsetp on the GUI thread"),
 }
 
 
