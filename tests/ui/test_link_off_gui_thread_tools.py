@@ -161,8 +161,8 @@ CASES = {
     "Array Editor Write to controller": Case(array_write),
     "Clear Error connects first": Case(clear_error),
     "Restart connects first": Case(restart),
-    "Oscilloscope TESTSETP": Case(scope_testsetp, "list_testsetp and load_testsetp on the GUI thread"),
-    "Oscilloscope TESTSETP Reload": Case(scope_reload, "reload_testsetp on the GUI thread"),
+    "Oscilloscope TESTSETP": Case(scope_testsetp),
+    "Oscilloscope TESTSETP Reload": Case(scope_reload),
 }
 
 

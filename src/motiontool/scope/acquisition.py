@@ -289,12 +289,14 @@ def recorded_start(scope: Scope, exclude: Curve | None = None) -> float | None:
     return min(starts) if starts else None
 
 
-def load_testsetp(scope: Scope, link: Link, index: int, axis: int = 1, label: str = "") -> list[Curve]:
+def load_testsetp(scope: Scope, link: Link, index: int, axis: int = 1, label: str = "", *,
+                  run: Run = _now) -> list[Curve]:
     """Upload recording `index` and add one curve per recorded value, named "Axis: Name [Index]"; the first
     of the set gets the grey background (DG 5339-5345). A recording added to a scope that holds curves starts
     where they start, so runs lie over each other as in S23's difference of two runs (decision S15); the
-    controller time of its first sample stays in the curve's Source info."""
-    data = link.upload_recording(index)
+    controller time of its first sample stays in the curve's Source info. `run` makes the request (on a thread in
+    the IDE); the curves are made where this is called."""
+    data = run(lambda: link.upload_recording(index))
     curves = []
     n = len(data.samples)
     first = data.first_ms
@@ -313,16 +315,16 @@ def load_testsetp(scope: Scope, link: Link, index: int, axis: int = 1, label: st
     return curves
 
 
-def reload_testsetp(scope: Scope, link: Link, curve: Curve) -> None:
+def reload_testsetp(scope: Scope, link: Link, curve: Curve, *, run: Run = _now) -> None:
     """Reload: fetch the curve's recording again (after the program re-ran) and replace the data."""
     name = curve.source.info.get("recording")
     if curve.source.method != "testsetp" or name is None:
         raise ValueError(f"curve '{curve.name}' has no recording to reload")
-    same = [r.index for r in link.list_recordings() if r.name == name]  # the newest run of it
+    same = [r.index for r in run(link.list_recordings) if r.name == name]  # the newest run of it
     if not same:
         raise ValueError(f"the controller has no recording '{name}' any more")
+    data = run(lambda: link.upload_recording(same[-1]))
     curve.source.info["index"] = same[-1]
-    data = link.upload_recording(same[-1])
     n = len(data.samples)
     j = [str(i) for i in data.indices].index(curve.source.signal)
     first = data.first_ms

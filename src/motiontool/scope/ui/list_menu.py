@@ -6,8 +6,8 @@ from __future__ import annotations
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QMenu
 
-from motiontool.scope.acquisition import reload_testsetp
 from motiontool.scope.ui.curve_list import NAME
+from motiontool.scope.ui.testsetp_load import reload_recording
 
 
 def show_list_menu(self, pos) -> None:
@@ -22,7 +22,7 @@ def show_list_menu(self, pos) -> None:
         menu.addAction("Left axis", lambda: _set_side(self, name, "left"))
         menu.addAction("Right axis", lambda: _set_side(self, name, "right"))
         menu.addAction("Share the left axis", lambda: _share(self, name))
-        reload_action = menu.addAction("Reload & Redisplay", lambda: _reload(self, name))
+        reload_action = menu.addAction("Reload & Redisplay", lambda: reload_recording(self, name))
         reload_action.setEnabled(self.scope.curve(name).source.method == "testsetp" and self.link is not None)
         menu.addAction("Delete", lambda: _delete(self, name))
     menu.addAction("Display ALL as Value", lambda: _all_values(self))
@@ -40,11 +40,6 @@ def _share(self, name: str) -> None:
     if self.chart.left_curve and self.chart.left_curve != name:
         self.scope.curve(name).axis.share = self.chart.left_curve
         self.zoom_reset()
-
-
-def _reload(self, name: str) -> None:
-    reload_testsetp(self.scope, self.link, self.scope.curve(name))
-    self.zoom_reset()
 
 
 def _delete(self, name: str) -> None:

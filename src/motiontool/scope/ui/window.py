@@ -16,7 +16,6 @@ from PySide6.QtGui import QAction, QActionGroup, QKeySequence
 from PySide6.QtWidgets import (
     QDockWidget,
     QFileDialog,
-    QInputDialog,
     QLabel,
     QMainWindow,
     QMessageBox,
@@ -32,8 +31,6 @@ from motiontool.scope.acquisition import (
     Polling,
     SingleShot,
     default_group,
-    list_testsetp,
-    load_testsetp,
     new_curve,
 )
 from motiontool.scope.curves import Scope
@@ -52,6 +49,7 @@ from motiontool.scope.ui.list_menu import show_list_menu
 from motiontool.scope.ui.poll_job import PollJob
 from motiontool.scope.ui.run_control import RunControl
 from motiontool.scope.ui.save_name import ask_save_name
+from motiontool.scope.ui.testsetp_load import load_recordings
 
 TITLES = {"free_run": "Free Run", "polling": "Free Run (polling)", "single_shot": "Single Shot",
           "testsetp": "TESTSETP", "tune": "Tune"}
@@ -332,29 +330,7 @@ class ScopeWindow(RunControl, QMainWindow):
 
     def load_recordings(self) -> None:
         """TESTSETP: one recording is loaded at once; with several the user picks (DG 5326-5333)."""
-        if self.link is None:
-            return
-        found = list_testsetp(self.link)
-        if not found:
-            self.statusBar().showMessage("No TESTSETP recording on the controller", 5000)
-            return
-        chosen = found[-1]
-        if len(found) > 1 and self.ask:
-            labels = [f"{r.index}: {r.name} ({r.samples} sets)" for r in found]
-            text, ok = QInputDialog.getItem(self, "TESTSETP", "Recording to upload:", labels, len(labels) - 1,
-                                            False)
-            if not ok:
-                return
-            chosen = found[labels.index(text)]
-        if any(c.source.method == "testsetp" and c.source.info.get("index") == chosen.index
-               for c in self.scope.curves):   # a second Load added the same set again (issue 23 item 8)
-            self.statusBar().showMessage(f"Recording {chosen.index} ({chosen.name}) is shown already; "
-                                         "Reload in the curve list reads it again", 10000)
-            return
-        label = "" if not self.scope.curves else f"#{chosen.index} "
-        load_testsetp(self.scope, self.link, chosen.index, label=label)
-        self.list.rebuild()
-        self.zoom_reset()
+        load_recordings(self)
 
     def show_fft(self) -> FftView:
         self._fft = FftView(self)
