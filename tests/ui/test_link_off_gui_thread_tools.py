@@ -15,6 +15,7 @@ from tests.ui.gui_thread_check import (
     RECORD,
     Case,
     checking,
+    click,
     connect,
     no_request_on_the_gui_thread,
     params,
@@ -154,6 +155,24 @@ def scope_reload(qtbot, w, tmp_path) -> None:
     scope.close()
 
 
+# --- the scope's Tune (DG 4704-4712, decision S9) -------------------------------------------------------------------
+def scope_tune(qtbot, w, tmp_path) -> None:
+    """Tune's Run: the gains written, the test move downloaded and started, its end awaited, the recording
+    uploaded; the run's result appears and Run is enabled again."""
+    connect(qtbot, w)
+    w.actions_by_text["Oscilloscope"].trigger()
+    scope = w._scopes[-1]
+    scope.ask = False
+    scope.mode_actions["tune"].trigger()
+    panel = scope.tune_panel
+    qtbot.waitUntil(lambda: panel.run.isEnabled(), timeout=20_000)
+    RECORD.clear()
+    click(qtbot, panel.run)
+    qtbot.waitUntil(lambda: scope.tune is not None and len(scope.tune.results) == 1 and panel.run.isEnabled(),
+                    timeout=30_000)
+    scope.close()
+
+
 CASES = {
     "CAM-Editor Read from controller": Case(cam_read),
     "CAM-Editor Write to controller": Case(cam_write),
@@ -163,6 +182,7 @@ CASES = {
     "Restart connects first": Case(restart),
     "Oscilloscope TESTSETP": Case(scope_testsetp),
     "Oscilloscope TESTSETP Reload": Case(scope_reload),
+    "Oscilloscope Tune Run": Case(scope_tune, "Tune's gains, begin, finished and finish on the GUI thread"),
 }
 
 
