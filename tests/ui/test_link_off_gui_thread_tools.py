@@ -182,7 +182,7 @@ CASES = {
     "Restart connects first": Case(restart),
     "Oscilloscope TESTSETP": Case(scope_testsetp),
     "Oscilloscope TESTSETP Reload": Case(scope_reload),
-    "Oscilloscope Tune Run": Case(scope_tune, "Tune's gains, begin, finished and finish on the GUI thread"),
+    "Oscilloscope Tune Run": Case(scope_tune),
 }
 
 

@@ -19,7 +19,7 @@ import numpy as np
 
 from motiontool.aposs.driver import compile_source
 from motiontool.comms.link import Link
-from motiontool.scope.acquisition import recorded_start
+from motiontool.scope.acquisition import Run, _now, recorded_start
 from motiontool.scope.curves import Curve, Group, Scope, Source
 
 SIGNALS = ("CPOS", "APOS", "TRACKERR", "AVEL")
@@ -131,9 +131,10 @@ class Tune:
         rec = self.link.recording_status()
         return rec is None or not rec.running
 
-    def finish(self) -> TuneResult:
+    def finish(self, *, run: Run = _now) -> TuneResult:
+        """`run` makes the upload request (on a thread in the IDE); the curves are made where this is called."""
         self.running = False
-        data = self.link.stop_recording()
+        data = run(self.link.stop_recording)
         t = np.asarray(data.time_ms, dtype=float)
         v = np.asarray(data.samples, dtype=float).reshape(t.size, len(SIGNALS))
         recorded_at = float(t[0]) if t.size else None

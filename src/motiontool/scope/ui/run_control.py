@@ -213,17 +213,18 @@ class RunControl:
             self.tune = Tune(self.scope, self.link)
         self.tune.link = self.link
         self.tune.config = self.tune_panel.config()
-        panel = self.tune_panel
-        try:
+        panel, tune = self.tune_panel, self.tune
+        try:   # each request on a thread while the window paints (user input waits: Run cannot start twice)
             if not panel.as_read:  # never read (no link when Tune was chosen): read before anything is written
-                panel.set_parameters(self.tune.read_parameters())
+                panel.set_parameters(wait(self, "Reading the gains …", tune.read_parameters))
             panel.generation += 1  # a re-read still on its way predates this write
-            self.tune.write_parameters(panel.changed())  # only the user's edits: the rest may be newer there
+            changed = panel.changed()   # only the user's edits: the rest may be newer there
+            wait(self, "Writing the gains …", lambda: tune.write_parameters(changed))
             if not self.tune_panel.overlay.isChecked():
                 for g in [g for g in self.scope.groups if g.name.startswith("Tune run")]:
                     for c in self.scope.members(g.name):
                         self.scope.remove_curve(c.name)
-            self.tune.begin()
+            wait(self, "Starting the test move …", tune.begin)
         except (ValueError, LinkError) as exc:
             self.tune_panel.state.setText(str(exc))
             return
@@ -251,14 +252,20 @@ class RunControl:
         threading.Thread(target=read, name="tune-read", daemon=True).start()
 
     def _tune_tick(self) -> None:
+        """Every 100 ms while the test move runs: is it over? Asked on a thread; one question at a time."""
+        self.tune_job.run(self.tune.finished, self._tune_checked)
+
+    def _tune_checked(self, done) -> None:
+        if done is False or not self.tune_timer.isActive():   # still moving, or the run was given up meanwhile
+            return
+        self.tune_timer.stop()   # before the upload: the timer fires on while it waits
+        result = None
         try:
-            if not self.tune.finished():
-                return
-            result = self.tune.finish()
+            if isinstance(done, Exception):
+                raise done
+            result = self.tune.finish(run=lambda request: wait(self, "Uploading the test move …", request))
         except LinkError as exc:
             self.tune_panel.state.setText(f"Test failed: {exc}")
-            result = None
-        self.tune_timer.stop()
         self.tune_panel.run.setEnabled(True)
         if result is not None:
             self.tune_panel.add_result(result)

@@ -120,6 +120,7 @@ class ScopeWindow(RunControl, QMainWindow):
         self.poll_timer.timeout.connect(self._poll)
         self.poll_job = PollJob(self)          # the polls' link requests, off the GUI thread
         self.status_job = PollJob(self, "scope-status")   # the Single Shot recording's progress
+        self.tune_job = PollJob(self, "scope-tune")       # whether Tune's test move has ended
         self.tune_timer = QTimer(self)
         self.tune_timer.setInterval(100)
         self.tune_timer.timeout.connect(self._tune_tick)
