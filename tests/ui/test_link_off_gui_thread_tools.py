@@ -107,6 +107,20 @@ def restart(qtbot, w, tmp_path) -> None:
     said(qtbot, w, "Controller 1: restarted (switched off and on)")
 
 
+# --- the scope ---------------------------------------------------------------------------------------------------
+def scope_opens(qtbot, w, tmp_path) -> None:
+    """Tools ▸ Oscilloscope: the curve list shows the controller's state (connected) from the start."""
+    connect(qtbot, w)
+    qtbot.waitUntil(lambda: w.bridge.last_status is not None, timeout=20_000)
+    RECORD.clear()
+    w.actions_by_text["Oscilloscope"].trigger()
+    scope = w._scopes[-1]
+    scope.ask = False
+    qtbot.waitUntil(lambda: scope.list.controller_state == "connected", timeout=20_000)
+    qtbot.waitUntil(lambda: bool(RECORD.taken()), timeout=20_000)     # the IDE's status poll, at least
+    scope.close()
+
+
 # --- the scope's TESTSETP (DG 5326-5347) ---------------------------------------------------------------------------
 RECORDS = ("DIM test[3000]\nTESTSETP 1 4097 4098 0x01270001 test\nTESTSTART 0\nPOSA 2000\nDELAY 1500\nTESTSTOP 0\n"
            "PRINT \"recorded\"\n")
@@ -180,6 +194,7 @@ CASES = {
     "Array Editor Write to controller": Case(array_write),
     "Clear Error connects first": Case(clear_error),
     "Restart connects first": Case(restart),
+    "Oscilloscope opens": Case(scope_opens, "the scope asks the status on the GUI thread as it binds"),
     "Oscilloscope TESTSETP": Case(scope_testsetp),
     "Oscilloscope TESTSETP Reload": Case(scope_reload),
     "Oscilloscope Tune Run": Case(scope_tune),
