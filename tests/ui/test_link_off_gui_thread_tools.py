@@ -194,7 +194,7 @@ CASES = {
     "Array Editor Write to controller": Case(array_write),
     "Clear Error connects first": Case(clear_error),
     "Restart connects first": Case(restart),
-    "Oscilloscope opens": Case(scope_opens, "the scope asks the status on the GUI thread as it binds"),
+    "Oscilloscope opens": Case(scope_opens),
     "Oscilloscope TESTSETP": Case(scope_testsetp),
     "Oscilloscope TESTSETP Reload": Case(scope_reload),
     "Oscilloscope Tune Run": Case(scope_tune),

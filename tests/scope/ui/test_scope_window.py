@@ -410,20 +410,22 @@ def test_status_colours_for_running_error_and_lost(qtbot, link, make):
     w = make(link, "free_run")
     w.add_signal_curve("APOS", group="Test Group (Free Run)")
 
-    def colour():
+    def colour(expected: str) -> None:
+        """Ask the state again; the answer comes from a thread (issue 27 item 2: the scope never waits for it)."""
         w._on_status(None)
-        return w.list.item_for("1: APOS").background(STATUS).color().name()
+        qtbot.waitUntil(lambda: w.list.item_for("1: APOS").background(STATUS).color().name() == expected,
+                        timeout=10_000)
 
-    assert colour() == "#006400"
+    colour("#006400")
     start_program(link, "DELAY 1000\n")
     link.advance(10)
-    assert colour() == "#00e000"
+    colour("#00e000")
     link.advance(1000)
     start_program(link, "DIM a[2]\na[5] = 1\n")   # index outside the array: a controller error
     link.advance(10)
-    assert colour() == "#e00000"
+    colour("#e00000")
     link.close()
-    assert colour() == "#ff9900"
+    colour("#ff9900")
 
 
 def test_grid_column_gives_a_curve_the_left_or_right_axis(qtbot, link, make):

@@ -121,6 +121,8 @@ class ScopeWindow(RunControl, QMainWindow):
         self.poll_job = PollJob(self)          # the polls' link requests, off the GUI thread
         self.status_job = PollJob(self, "scope-status")   # the Single Shot recording's progress
         self.tune_job = PollJob(self, "scope-tune")       # whether Tune's test move has ended
+        self.state_job = PollJob(self, "scope-state")     # the controller's state for the curve list
+        self._state_again = False                         # asked while a question was under way: ask after it
         self.tune_timer = QTimer(self)
         self.tune_timer.setInterval(100)
         self.tune_timer.timeout.connect(self._tune_tick)
@@ -165,19 +167,31 @@ class ScopeWindow(RunControl, QMainWindow):
             self.free_run.feed(data)
 
     def _on_status(self, status) -> None:
+        """The controller's state in the curve list; `status` None: the IDE's last polled one, else asked on a
+        thread (the answer, or the LinkError, comes back here)."""
         link = self.link
+        if link is not None and status is None:
+            status = getattr(self.bridge, "last_status", None)
+            if status is None:
+                if not self.state_job.run(link.status, self._state_answered):   # one question at a time
+                    self._state_again = True    # its answer may predate what made us ask: ask once more
+                return
         if link is None:
             state = "unbound"
+        elif isinstance(status, Exception):
+            state = "lost"
         else:
-            try:
-                status = status or link.status()
-                state = {"running": "running", "error": "error"}.get(status.program_state, "connected")
-                if status.error:
-                    state = "error"
-            except LinkError:
-                state = "lost"
+            state = {"running": "running", "error": "error"}.get(status.program_state, "connected")
+            if status.error:
+                state = "error"
         self.list.controller_state = state
         self.list.update_values(mouse_t=self.mouse_t)
+
+    def _state_answered(self, status) -> None:
+        self._on_status(status)
+        if self._state_again:
+            self._state_again = False
+            self._on_status(None)
 
     def _on_connection(self, state: str) -> None:
         self.list.controller_state = "lost" if state == "lost" else self.list.controller_state
