@@ -22,7 +22,9 @@ an APOSS window (offscreen) connected to its controller 1, which runs a program 
   does: open, identify) with the 10 ms timer running; before issue 27 item 2 the window stood still the whole time,
 - ide_execute_longest_stall / _longest_busy / ide_execute_seconds: the same for Execute (status, download, start),
 - ide_download_all_longest_stall / _longest_busy / ide_download_all_seconds: the same for Development ▸ Download
-  all with Download and Verify (delete, download, upload to compare) on controller 1, from Start until done.
+  all with Download and Verify (delete, download, upload to compare) on controller 1, from Start until done,
+- ide_prepare_singlestep_* / ide_singlestep_* / ide_end_debug_*: the same, last, for the debugger's Prepare
+  Singlestep (status, break, debug download, breakpoints, start), one Singlestep and End Debug.
 `--baud` sets another baud rate (the names of the first four follow it)."""
 
 import argparse
@@ -109,6 +111,12 @@ def main() -> None:
             print(f"ide_polling_scope_longest_stall: {stall:.0f} ms")
             print(f"ide_polling_scope_longest_busy: {busy:.0f} ms")
             print(f"ide_polling_scope_polls: {polls:.2f} /s")
+            for name, entry in (("prepare_singlestep", "Prepare Singlestep"), ("singlestep", "Singlestep"),
+                                ("end_debug", "End Debug")):   # last: Prepare stops the ticking program
+                _, stall, busy, took = measured(window, window.actions_by_text[entry].trigger, QEventLoop, QTimer)
+                print(f"ide_{name}_longest_stall: {stall:.0f} ms")
+                print(f"ide_{name}_longest_busy: {busy:.0f} ms")
+                print(f"ide_{name}_seconds: {took:.2f} s")
         finally:
             window.bridge.detach(close=False)
             window.controllers.close()
