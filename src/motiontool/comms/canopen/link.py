@@ -65,7 +65,7 @@ SDO_COB_IDS = {1: (0x600, 0x580), 2: (0x100, 0x680)}   # client → server, serv
 # failed to write it between another master's transfers
 SDO2_PROBE_S = 1.0
 COLLISION_S = 2.0       # another master's request this recent explains a transfer that went wrong
-ENABLE_TRIES, QUIET_S = 10, 0.05  # enabling SDO 2 through channel 1 waits for a pause of the other master there
+ENABLE_TRIES, QUIET_S = 10, 0.015  # enabling SDO 2 through channel 1 waits for a pause of the other master there
 
 
 def open_bus(interface: str, channel: str, bitrate: int | None = None, client: str = "fast") -> can.BusABC:
@@ -229,7 +229,7 @@ class CanopenLink(RemoteLink):
             last = max(self._foreign_request.get(c, 0) for c in cob_ids)
             if time.monotonic() - last >= QUIET_S:
                 return
-            time.sleep(QUIET_S / 4)
+            time.sleep(QUIET_S / 5)
 
     def _disconnect(self) -> None:
         notifier, bus = self.network.notifier, self.network.bus
