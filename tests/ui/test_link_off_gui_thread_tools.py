@@ -5,13 +5,16 @@ and names the link requests it made on the GUI thread; one still made there is x
 
 from __future__ import annotations
 
+import threading
+
 import pytest
-from PySide6.QtCore import Qt
+from PySide6.QtCore import Qt, QTimer
 from PySide6.QtGui import QContextMenuEvent
 from PySide6.QtWidgets import QApplication, QLineEdit, QMenu, QMessageBox
 
 from tests.modal import answering, button_reply
 from tests.ui.gui_thread_check import (
+    HOLD,
     RECORD,
     Case,
     checking,
@@ -205,3 +208,31 @@ CASES = {
 def test_no_link_request_of_the_action_runs_on_the_gui_thread(checked, qtbot, tmp_path, name):
     CASES[name].action(qtbot, checked, tmp_path)
     no_request_on_the_gui_thread(name)
+
+
+def test_while_the_cam_editor_reads_its_window_says_so(checked, qtbot, tmp_path):
+    """Read from controller with its array list held on the line: the CAM editor's own status bar names what it
+    waits for and the cursor is busy; both are gone once the controller's parameters are the editor's."""
+    editor = cam_editor(qtbot, checked)
+    arrived, through = threading.Event(), threading.Event()
+    HOLD["list_arrays"] = (arrived, through)
+    seen: dict[str, object] = {}
+
+    def look() -> None:
+        if not arrived.is_set():
+            QTimer.singleShot(20, look)
+            return
+        seen["message"] = editor.statusBar().currentMessage()
+        cursor = QApplication.overrideCursor()
+        seen["cursor"] = cursor.shape() if cursor is not None else None
+        through.set()
+
+    QTimer.singleShot(0, look)
+    try:
+        editor.actions_by_name["read"].trigger()
+    finally:
+        through.set()
+    assert editor.parameters
+    assert seen == {"message": "Controller 1: reading parameters and arrays …", "cursor": Qt.CursorShape.BusyCursor}
+    assert QApplication.overrideCursor() is None
+    assert editor.statusBar().currentMessage() != seen["message"]
