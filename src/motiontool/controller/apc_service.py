@@ -28,6 +28,7 @@ from motiontool.apc.drive import ApcDrive
 from motiontool.apc.readpars import parameter_number
 from motiontool.comms.operations import OPERATIONS
 from motiontool.comms.protocol import PROTOCOL_VERSION, LinkEvent, Request, Response, Status
+from motiontool.controller import sampling
 from motiontool.controller.embedded import EmbeddedLink
 from motiontool.controller.signal_catalogue import apc_signals
 
@@ -90,10 +91,8 @@ class ApcService:
         self.arrays: list[tuple[str, list]] = []      # the program's arrays, in declaration order
         self.errors: list[dict] = []
         self.time_ms = 0
-        self.stream_signals: list[tuple[str, Callable[[], int]]] = []
-        self.stream_interval = 0
-        self._stream_times: list[int] = []
-        self._stream_buffer: list[list[int]] = []
+        self.stream: sampling.Sampler | None = None          # Free Run (op_stream)
+        self._packets: sampling.PacketSink | None = None
         self.digin0 = 0                               # DIGIN0's level (the freeze input)
         self._inputs_due: list[tuple[int, int, str, int]] = []   # (time ms, order, input, value) of schedule_input
         self.drive.listeners.append(self._drive_event)
@@ -135,18 +134,15 @@ class ApcService:
             self._apply_input(name, value, at * 1000)
         if self._runs_samples:
             self._clock.run_until(self.time_ms * 1_000_000, self.drive, self.slice, self._run_sample)
-        if self.stream_signals and self.time_ms % self.stream_interval == 0:
-            self._stream_times.append(self.time_ms)
-            self._stream_buffer.append([read() for _, read in self.stream_signals])
-            if len(self._stream_times) >= max(1, 20 // self.stream_interval):
-                self.flush_stream()
+        if self.stream is not None:
+            self.stream.tick(self.time_ms)
 
     def flush_stream(self) -> None:
-        if self._stream_times:
-            data = {"signals": [n for n, _ in self.stream_signals], "time_ms": self._stream_times,
-                    "values": self._stream_buffer}
-            self._stream_times, self._stream_buffer = [], []
-            self._publish(LinkEvent("samples", self.time_ms, data=data))
+        if self._packets is not None:
+            self._packets.flush()
+
+    def _publish_samples(self, data: dict) -> None:
+        self._publish(LinkEvent("samples", self.time_ms, data=data))
 
     # --- requests --------------------------------------------------------------------------------------------------
     def handle(self, request: Request) -> Response:
@@ -207,9 +203,13 @@ class ApcService:
         data[:len(values)] = [int(v) for v in values]
 
     def op_stream(self, signals, interval_ms=1) -> None:
+        interval_ms = max(1, int(interval_ms))  # a bad interval or signal leaves the running stream as it was
+        readers = [self.signal(name) for name in signals]
         self.flush_stream()
-        self.stream_signals = [(str(name), self.signal(name)) for name in signals]
-        self.stream_interval = max(1, int(interval_ms))
+        self.stream, self._packets = None, None
+        if readers:
+            self.stream, self._packets = sampling.stream([str(name) for name in signals], readers, interval_ms,
+                                                         self._publish_samples)
 
     def signal(self, name) -> Callable[[], int]:
         """A reader for a scope signal: the MCO's SYSVAR sys_clock (4119, ms), which the scope reads with every

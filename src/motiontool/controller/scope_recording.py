@@ -8,10 +8,11 @@ ms. It belongs to the link, not to the program, so it survives a program start, 
 
 from __future__ import annotations
 
-from collections import deque
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from functools import partial
 
+from motiontool.controller.sampling import BoundedStore, Sampler
 from motiontool.kernel.errors import ControllerError
 from motiontool.kernel.recorder import DYNAMIC_MEMORY, MAX_INDICES
 from motiontool.kernel.vm import ArrayRef
@@ -20,47 +21,25 @@ from motiontool.kernel.vm import ArrayRef
 @dataclass
 class ScopeRecording:
     signals: list[str]
-    readers: list[Callable]
-    interval_ms: int
     destination: str            # "DYNMEM" or the name of a user array
-    array: ArrayRef | None      # the user array, None = dynamic memory
-    cyclic: bool
-    limit: int                  # sample sets to keep
     start_ms: int
-    samples: deque = field(default_factory=deque)
-    times: deque = field(default_factory=deque)
-    running: bool = True
-    taken: int = 0
-    countdown: int = 0
+    sampler: Sampler            # from the first tick after the start, every interval
+    store: BoundedStore
 
-    def sample(self, controller) -> None:
-        """Called once per controller tick (1 ms)."""
-        if not self.running:
-            return
-        if self.countdown > 0:
-            self.countdown -= 1
-            return
-        self.countdown = self.interval_ms - 1
-        if len(self.samples) >= self.limit and not self.cyclic:
-            self.running = False  # stop when full: new data is discarded (DG 5308)
-            return
-        row = [read(controller) for read in self.readers]
-        self.samples.append(row)
-        self.times.append(controller.time_ms)
-        if self.array is not None:  # the sets occupy the user array like a TESTSETP recording
-            k = len(row)
-            slot = (self.taken % self.limit) * k
-            self.array.data[slot:slot + k] = [int(round(v)) for v in row]
-        self.taken += 1
+    @property
+    def running(self) -> bool:
+        return self.sampler.running
 
     def status(self) -> dict:
-        return {"running": self.running, "samples": len(self.samples), "limit": self.limit, "taken": self.taken,
-                "interval_ms": self.interval_ms}
+        store = self.store
+        return {"running": self.running, "samples": len(store.samples), "limit": store.limit, "taken": store.taken,
+                "interval_ms": self.sampler.interval_ms}
 
     def upload(self) -> dict:
-        return {"name": f"Single Shot ({self.destination})", "interval_ms": self.interval_ms,
-                "start_ms": self.start_ms, "signals": list(self.signals), "time_ms": list(self.times),
-                "samples": [list(s) for s in self.samples], "taken": self.taken}
+        store = self.store
+        return {"name": f"Single Shot ({self.destination})", "interval_ms": self.sampler.interval_ms,
+                "start_ms": self.start_ms, "signals": list(self.signals), "time_ms": list(store.times),
+                "samples": [list(s) for s in store.samples], "taken": store.taken}
 
 
 def configure(controller, signals: list[str], readers: list[Callable], interval_ms: int, destination: str,
@@ -89,5 +68,6 @@ def configure(controller, signals: list[str], readers: list[Callable], interval_
         raise ControllerError(171 if array is not None else 194,
                               f"{count} sample sets do not fit in {destination} ({capacity} fit)")
     limit = int(count) if count > 0 else capacity
-    return ScopeRecording(list(signals), readers, int(interval_ms), destination, array, bool(cyclic), limit,
-                          controller.time_ms, deque(maxlen=limit), deque(maxlen=limit))
+    store = BoundedStore(limit, bool(cyclic), array)
+    sampler = Sampler([partial(read, controller) for read in readers], int(interval_ms), store, aligned=False)
+    return ScopeRecording(list(signals), destination, controller.time_ms, sampler, store)

@@ -6,12 +6,13 @@ from __future__ import annotations
 import base64
 import time
 from collections.abc import Callable
+from functools import partial
 from typing import Any
 
 from motiontool.aposs.image import ImageError, ProgramImage
 from motiontool.comms.operations import OPERATIONS
 from motiontool.comms.protocol import PROTOCOL_VERSION, LinkEvent, Request, Response, Status
-from motiontool.controller import scope_recording
+from motiontool.controller import sampling, scope_recording
 from motiontool.controller.signal_catalogue import mco_signals
 from motiontool.kernel import fc300
 from motiontool.kernel.arrays import MAX_ARRAY_ELEMENTS
@@ -56,10 +57,8 @@ class ControllerService:
         self.wipe_at_power_on = False           # Memory ▸ Delete EPROM (DG 2908-2946)
         self.listeners: list[Callable[[LinkEvent], object]] = []
         self.controller.listeners.append(self._forward)
-        self.stream_signals: list[tuple[str, Callable]] = []
-        self.stream_interval = 0
-        self._stream_buffer: list[list[float]] = []
-        self._stream_times: list[int] = []
+        self.stream: sampling.Sampler | None = None          # Free Run (op_stream)
+        self._packets: sampling.PacketSink | None = None
         self.recording: scope_recording.ScopeRecording | None = None  # the Single Shot scope's
 
     def _forward(self, event: Event) -> None:
@@ -77,19 +76,16 @@ class ControllerService:
         if store.waiting_for_input or c.program_state != store.seen_state:  # else store.tick has nothing to do
             store.tick(c)
         if self.recording is not None:
-            self.recording.sample(self.controller)
-        if self.stream_signals and c.time_ms % self.stream_interval == 0:
-            self._stream_times.append(c.time_ms)
-            self._stream_buffer.append([read(c) for _, read in self.stream_signals])
-            if len(self._stream_times) >= max(1, 20 // self.stream_interval):  # a packet every ~20 ms
-                self.flush_stream()
+            self.recording.sampler.tick(c.time_ms)
+        if self.stream is not None:
+            self.stream.tick(c.time_ms)
 
     def flush_stream(self) -> None:
-        if self._stream_times:
-            data = {"signals": [n for n, _ in self.stream_signals], "time_ms": self._stream_times,
-                    "values": self._stream_buffer}
-            self._stream_times, self._stream_buffer = [], []
-            self._publish(LinkEvent("samples", self.controller.time_ms, data=data))
+        if self._packets is not None:
+            self._packets.flush()
+
+    def _publish_samples(self, data: dict) -> None:
+        self._publish(LinkEvent("samples", self.controller.time_ms, data=data))
 
     # --- requests ------------------------------------------------------------------------------------------
     def handle(self, request: Request) -> Response:
@@ -284,6 +280,7 @@ class ControllerService:
         self.controller.io.schedule(time_ms, number, value)
 
     def op_stream(self, signals, interval_ms=1) -> None:
+        interval_ms = max(1, int(interval_ms))  # a bad interval leaves the running stream as it was
         self.flush_stream()
         readers = [(name, signal_reader(name)) for name in signals]
         for name, read in readers:  # refuse an unknown signal here, not in the middle of a tick
@@ -291,8 +288,11 @@ class ControllerService:
                 read(self.controller)
             except ControllerError:
                 raise ValueError(f"unknown signal '{name}'") from None
-        self.stream_signals = readers
-        self.stream_interval = max(1, int(interval_ms))
+        self.stream, self._packets = None, None
+        if readers:
+            c = self.controller
+            self.stream, self._packets = sampling.stream([n for n, _ in readers], [partial(r, c) for _, r in readers],
+                                                         interval_ms, self._publish_samples)
 
     def op_read_signals(self, signals) -> list:
         c = self.controller
