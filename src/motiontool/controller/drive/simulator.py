@@ -15,20 +15,19 @@ and queues a message event saying so, which the master reads when it comes back.
 from __future__ import annotations
 
 import random
-import sys
 import threading
 import time
 
 from motiontool.aposs.image import ProgramImage
 from motiontool.comms.protocol import LinkEvent
 from motiontool.controller.drive.node import DriveNode
+from motiontool.controller.pacing import BURST, PacedClock
 from motiontool.controller.service import ControllerService
 from motiontool.kernel.master import MasterConfig
 from motiontool.kernel.simulation import Simulation
 
 CLOCKS = ("realtime", "virtual")
 REACTIONS = ("none", "stop")
-BURST = 200           # ticks computed at most in one go when the clock thread fell behind
 MAX_ADVANCE_MS = 60_000   # one `advance` request; `run --link` asks 50 ms at a time
 ADVANCE_SLICE_MS = 50     # advanced under the lock at a time
 
@@ -55,8 +54,7 @@ class VirtualDrive:
             service = ControllerService(self.simulation[n])
             self.simulation.set_ticker(n, service.tick)
             self.nodes[n] = DriveNode(n, service, self)
-        self._stop = threading.Event()
-        self._thread: threading.Thread | None = None
+        self._clock: PacedClock | None = None
         self._timed_out: set[int] = set()
 
     # --- set-up ---------------------------------------------------------------------------------------
@@ -92,38 +90,28 @@ class VirtualDrive:
             self._reset_nodes()
 
     def start(self) -> None:
-        if self.clock == "realtime" and self._thread is None:
-            # requests from listener threads must not wait for Python's 5 ms thread switch (see EmbeddedLink)
-            sys.setswitchinterval(min(sys.getswitchinterval(), 0.0005))
-            self._thread = threading.Thread(target=self._run, name="virtual-drive-clock", daemon=True)
-            self._thread.start()
+        if self.clock == "realtime" and self._clock is None:
+            # far behind (a suspended process): the drive drops the missed ticks instead of racing to catch up
+            self._clock = PacedClock("virtual-drive-clock", self.speed, self._advance, max_lag=10 * BURST)
+            self._clock.start()
 
     def stop(self) -> None:
-        self._stop.set()
-        if self._thread is not None:
-            self._thread.join(timeout=2.0)
-            self._thread = None
+        if self._clock is not None:
+            self._clock.stop(timeout=2.0)
+            self._clock = None
 
-    def _run(self) -> None:
-        start = time.monotonic()
-        ticks = 0
+    def _advance(self, ticks: int) -> None:
+        """One round of the clock: `ticks` ms of every node, the lock taken per tick (a request waits at most one
+        tick), then the link timeout and the nodes' resets."""
         simulation = self.simulation
-        while not self._stop.is_set():
-            due = int((time.monotonic() - start) * 1000 * self.speed)
-            burst = min(due - ticks, BURST)
-            for _ in range(burst):
-                with self.lock:
-                    try:
-                        simulation.tick()
-                    except Exception as exc:  # noqa: BLE001 - report it, keep the drive reachable
-                        self._fault(exc)
-            ticks += burst
-            if due - ticks > 10 * BURST:  # far behind (a suspended process): do not race to catch up
-                ticks = due
-            self._watch_timeout()
-            self._reset_nodes()
-            if burst < BURST:
-                time.sleep(0.001)
+        for _ in range(ticks):
+            with self.lock:
+                try:
+                    simulation.tick()
+                except Exception as exc:  # noqa: BLE001 - report it, keep the drive reachable
+                    self._fault(exc)
+        self._watch_timeout()
+        self._reset_nodes()
 
     def _reset_nodes(self) -> None:
         """A node that received NMT Reset Node is switched off and on, as Controller ▸ Restart does (N51)."""
