@@ -88,6 +88,9 @@ def wait_off_gui(work: Callable[[], Any]) -> Any:
     thread.start()
     while not box:  # the queued quit may come before exec(): then the loop ends at its first pass
         loop.exec(QEventLoop.ProcessEventsFlag.ExcludeUserInputEvents)
+    # The answer is in the box before the thread emits: a quick answer is seen without a pass of the loop, and the
+    # relay deleted then could be deleted while the thread still emits from it (a segfault under load).
+    thread.join()
     relay.deleteLater()
     if isinstance(box[0], Exception):
         raise box[0]
