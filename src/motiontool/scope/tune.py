@@ -141,7 +141,7 @@ class Tune:
         if t.size:
             t = t - t[0]
         cfg = self.config
-        run = len(self.results) + 1
+        number = len(self.results) + 1
         # positions relative to where the run started, so runs overlay; later runs share run 1's axes
         v[:, 0] -= self._start_cpos
         v[:, 1] -= self._start_cpos
@@ -152,19 +152,19 @@ class Tune:
                                             cfg.band)
         # on the time base of what the scope holds (a TESTSETP set sits at its controller time, decision S15)
         t = t + (recorded_start(self.scope) or 0.0)
-        group = self.scope.add_group(Group(f"Tune run {run}", method="single_shot", interval_ms=1,
+        group = self.scope.add_group(Group(f"Tune run {number}", method="single_shot", interval_ms=1,
                                            count=cfg.max_ms))
         names = []
         for j, signal in enumerate(SIGNALS):
-            curve = Curve(f"Run {run}: {signal}", Source(method="single_shot", signal=signal, group=group.name,
-                                                          info={"run": run, "recorded_at_ms": recorded_at}),
+            curve = Curve(f"Run {number}: {signal}", Source(method="single_shot", signal=signal, group=group.name,
+                                                          info={"run": number, "recorded_at_ms": recorded_at}),
                           unit="UU/s" if signal == "AVEL" else "UU", first_of_set=j == 0)
             curve.buffer.set_capacity(max(t.size, 1))
             curve.buffer.extend(t, v[:, j])
             if first_run is not None and first_run[j] in {c.name for c in self.scope.curves}:
                 curve.axis.share = first_run[j]
             names.append(self.scope.add_curve(curve).name)
-        result = TuneResult(run, dict(self._parameters), overshoot, settling, peak, int(t.size), names)
+        result = TuneResult(number, dict(self._parameters), overshoot, settling, peak, int(t.size), names)
         self.results.append(result)
         return result
 
