@@ -15,6 +15,7 @@ import json
 import pytest
 
 from tests.apc.trace_identity import GOLDEN, runs
+from tests.trace_hash import first_different_second
 
 GOLDEN_RUNS = json.loads(GOLDEN.read_text(encoding="utf-8"))
 RUNS = dict(runs())
@@ -27,7 +28,6 @@ def test_every_golden_run_is_still_run():
 @pytest.mark.parametrize("name", sorted(RUNS))
 def test_trace_is_identical_row_for_row(name: str):
     got, want = RUNS[name](), GOLDEN_RUNS[name]
-    assert got["ms"] == want["ms"]
-    first = next((i for i, (a, b) in enumerate(zip(got["seconds"], want["seconds"], strict=True)) if a != b), None)
-    assert first is None, f"{name}: the trace differs in second {first} (ms {first * 1000}..{first * 1000 + 999})"
+    difference = first_different_second(name, got, want)
+    assert difference is None, difference
     assert (got["events"], got["event_count"]) == (want["events"], want["event_count"]), f"{name}: errors, trips"

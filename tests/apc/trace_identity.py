@@ -10,7 +10,6 @@ trips the drives report, with their sample, go into one more sha256.
 
 from __future__ import annotations
 
-import hashlib
 import json
 import sys
 from collections.abc import Callable, Iterator
@@ -22,6 +21,7 @@ from motiontool.dpl.driver import check_source
 from motiontool.dpl.runtime import DplRuntime
 from tests.apc.helpers import VirtualMaster, enabled_drive
 from tests.dpl.manual import PROGRAMS
+from tests.trace_hash import SecondHashes, text_hash
 
 GOLDEN = Path(__file__).parent / "golden" / "trace_identity.json"
 
@@ -43,27 +43,17 @@ def row(d: ApcDrive, memory=None) -> tuple:
 
 class Fingerprint:
     def __init__(self, drives: list[ApcDrive]) -> None:
-        self.seconds: list[str] = []
         self.events: list[str] = []
-        self._hash = hashlib.sha256()
-        self._rows = 0
+        self._rows = SecondHashes()
         for i, d in enumerate(drives):
             d.listeners.append(lambda kind, details, i=i, d=d: self.events.append(
                 f"{i} {d.time_ns} {kind} {sorted(details.items())}"))
 
     def add(self, rows: list[tuple]) -> None:
-        self._hash.update(repr(rows).encode())
-        self._rows += 1
-        if self._rows % 1000 == 0:
-            self.seconds.append(self._hash.hexdigest()[:16])
-            self._hash = hashlib.sha256()
+        self._rows.add(rows)
 
     def result(self) -> dict:
-        if self._rows % 1000:  # the last, partial second
-            self.seconds.append(self._hash.hexdigest()[:16])
-        return {"ms": self._rows, "seconds": self.seconds,
-                "events": hashlib.sha256("\n".join(self.events).encode()).hexdigest()[:16],
-                "event_count": len(self.events)}
+        return {**self._rows.finish(), "events": text_hash(self.events), "event_count": len(self.events)}
 
 
 # --- benchmarks/apc_rtf.py ------------------------------------------------------------------------------------------

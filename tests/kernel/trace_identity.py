@@ -8,7 +8,6 @@ node), plus one sha256 of all PRINT lines with their times; floats by repr, so a
 
 from __future__ import annotations
 
-import hashlib
 import json
 import sys
 from collections.abc import Callable, Iterator
@@ -21,6 +20,7 @@ from motiontool.controller.embedded import EmbeddedLink
 from motiontool.kernel.master import MasterConfig
 from tests.kernel.test_cam_examples import MARKER, QC_PER_MU, STAMPING, run_example, start_conveyor
 from tests.test_samples import SAMPLES, parse_header
+from tests.trace_hash import SecondHashes, text_hash
 
 GOLDEN = Path(__file__).parent / "golden" / "trace_identity.json"
 SAMPLE_MS = 5_000  # each sample's first 5 s (tests/test_samples.py runs them for their whole Test-seconds)
@@ -50,24 +50,14 @@ def row(c) -> tuple:
 
 class Fingerprint:
     def __init__(self) -> None:
-        self.seconds: list[str] = []
         self.prints: list[str] = []
-        self._hash = hashlib.sha256()
-        self._rows = 0
+        self._rows = SecondHashes()
 
     def add(self, rows: list[tuple]) -> None:
-        self._hash.update(repr(rows).encode())
-        self._rows += 1
-        if self._rows % 1000 == 0:
-            self.seconds.append(self._hash.hexdigest()[:16])
-            self._hash = hashlib.sha256()
+        self._rows.add(rows)
 
     def result(self) -> dict:
-        if self._rows % 1000:  # the last, partial second
-            self.seconds.append(self._hash.hexdigest()[:16])
-        return {"ms": self._rows, "seconds": self.seconds,
-                "prints": hashlib.sha256("\n".join(self.prints).encode()).hexdigest()[:16],
-                "print_count": len(self.prints)}
+        return {**self._rows.finish(), "prints": text_hash(self.prints), "print_count": len(self.prints)}
 
 
 def _listen(link, fp: Fingerprint, node: int = 0) -> None:
