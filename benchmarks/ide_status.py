@@ -53,7 +53,7 @@ def main() -> None:
     from PySide6.QtWidgets import QApplication
 
     from motiontool.controller import schemes
-    from motiontool.ui.controllers import InterfaceConfig
+    from motiontool.session.controllers import InterfaceConfig
     from motiontool.ui.main_window import MainWindow
     from motiontool.ui.parameter_dialogs import ParametersDialog
 

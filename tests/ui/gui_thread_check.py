@@ -16,7 +16,7 @@ from PySide6.QtWidgets import QApplication
 from motiontool.comms import links
 from motiontool.comms.link import Link
 from motiontool.comms.links import open_link, register_link_scheme
-from motiontool.ui.controllers import InterfaceConfig
+from motiontool.session.controllers import InterfaceConfig
 
 SCHEME = "gui-thread-check"
 PROGRAM = "x = 1\nPRINT \"ran \", x\n"

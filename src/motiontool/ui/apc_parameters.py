@@ -16,7 +16,7 @@ from PySide6.QtWidgets import QFileDialog, QHBoxLayout, QLabel, QPushButton
 
 from motiontool.apc.parameter_menus import MENUS, ApcParam, checked, dump, load
 from motiontool.fileio import MiB, atomic_write_text, read_text, reason, write_error
-from motiontool.ui.controllers import APC_SIM, InterfaceConfig
+from motiontool.session.controllers import APC_SIM, InterfaceConfig
 from motiontool.ui.parameter_pages import ParameterPages, Row
 
 COLUMNS = ("Par.", "Name", "Value", "Units", "Range", "Default")

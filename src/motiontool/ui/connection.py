@@ -220,7 +220,7 @@ def _ids(ids: list[int]) -> str:
 def new_registry(settings, realtime_factor: float):
     """The interfaces of a first APOSS window; its default interface comes from Settings → Interface (windows
     opened from it share its registry)."""
-    from motiontool.ui.controllers import ControllerRegistry
+    from motiontool.session.controllers import ControllerRegistry
     from motiontool.ui.interface_dialog import load_interfaces
 
     configs, default = load_interfaces(settings)

@@ -24,7 +24,7 @@ from PySide6.QtWidgets import (
 
 from motiontool.comms.client import ProgramInfo
 from motiontool.comms.protocol import LinkError
-from motiontool.ui.controllers import SIMULATED_IDS
+from motiontool.session.controllers import SIMULATED_IDS
 from motiontool.ui.link_jobs import waiting
 
 SET_LABELS = {"global": "Global parameters", "axis": "Axis parameters", "user": "User parameters",

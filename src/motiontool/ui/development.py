@@ -15,9 +15,9 @@ from motiontool.comms.protocol import LinkError
 from motiontool.dpl.driver import CheckResult, check_source
 from motiontool.dpl.image import DplImage
 from motiontool.fileio import atomic_write_bytes, write_error
+from motiontool.session.controllers import APC_SIM, InterfaceConfig
 from motiontool.ui.compiler_settings import CompilerSettings
 from motiontool.ui.compiler_settings import check as compiler_checks
-from motiontool.ui.controllers import APC_SIM, InterfaceConfig
 from motiontool.ui.link_jobs import waiting
 
 DEFAULT_CONTROLLER = ("embedded", 1)

@@ -27,7 +27,7 @@ from PySide6.QtWidgets import (
 )
 
 from motiontool.comms.protocol import LinkError
-from motiontool.ui.controllers import APC_SIM, BAUDS, SIMULATED_IDS, ControllerRegistry, InterfaceConfig
+from motiontool.session.controllers import APC_SIM, BAUDS, SIMULATED_IDS, ControllerRegistry, InterfaceConfig
 from motiontool.ui.link_jobs import waiting
 
 KINDS = {"sim": "Simulator (embedded MCO 305)", "fc": "FC protocol (RS-485 / USB)",
