@@ -15,8 +15,9 @@ import threading
 from collections.abc import Callable
 from typing import Any
 
-from PySide6.QtCore import QEventLoop, QObject, Qt, Signal, Slot
-from PySide6.QtWidgets import QApplication
+from PySide6.QtCore import QCoreApplication, QEvent, QEventLoop, QObject, Qt, Signal, Slot
+from PySide6.QtGui import QAction
+from PySide6.QtWidgets import QAbstractButton, QApplication, QMenu, QMenuBar, QWidget
 
 from motiontool.comms.protocol import LinkError
 
@@ -97,16 +98,55 @@ def wait_off_gui(work: Callable[[], Any]) -> Any:
     return box[0]
 
 
+_CLICKS = (QEvent.Type.MouseButtonPress, QEvent.Type.MouseButtonRelease, QEvent.Type.MouseButtonDblClick)
+
+
+class _CommandGuard(QObject):
+    """While a command of `window` waits, and while the input that came meanwhile is delivered after it, a
+    shortcut or a click on a button, menu or toolbar of that window would start a command again (a second click on
+    Prepare Singlestep ran it twice, one after the other): those are dropped. Typing is kept, and other windows (a
+    dialog the wait opened) get everything."""
+
+    def __init__(self, window: QWidget) -> None:
+        super().__init__()
+        self.window = window
+
+    def _ours(self, obj: QObject) -> bool:
+        widget = obj.parent() if isinstance(obj, QAction) else obj
+        while isinstance(widget, QMenu) and widget.parentWidget() is not None:   # a menu is a window of its own
+            widget = widget.parentWidget()
+        return isinstance(widget, QWidget) and widget.window() is self.window
+
+    def eventFilter(self, obj: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt's name
+        kind = event.type()
+        if kind == QEvent.Type.Shortcut or (kind in _CLICKS and isinstance(obj, (QAbstractButton, QMenu, QMenuBar))):
+            return self._ours(obj)
+        return False
+
+
+_guarding = [0]   # waits under way: the outermost one delivers, and drops, what came during all of them
+
+
 def waiting(window, text: str, work: Callable[[], Any]) -> Any:
-    """wait_off_gui while `window` (a main window, or a widget inside one) shows that it waits for the controller."""
+    """wait_off_gui while `window` (a main window, or a widget inside one) shows that it waits for the controller;
+    meanwhile and right after, what would start a command again is dropped (_CommandGuard)."""
     main = window.window() if hasattr(window, "window") else window
     bar = main.statusBar() if hasattr(main, "statusBar") else None
     if bar is not None:
         bar.showMessage(text)
     QApplication.setOverrideCursor(Qt.CursorShape.BusyCursor)
+    guard = _CommandGuard(main)
+    app = QCoreApplication.instance()
+    assert app is not None
+    app.installEventFilter(guard)
+    _guarding[0] += 1
     try:
         return wait_off_gui(work)
     finally:
+        _guarding[0] -= 1
+        if _guarding[0] == 0:   # the clicks and keys that waited are delivered now, through the guard
+            QCoreApplication.processEvents()
+        app.removeEventFilter(guard)
         QApplication.restoreOverrideCursor()
         if bar is not None and bar.currentMessage() == text:   # a later message of the command stays
             bar.clearMessage()

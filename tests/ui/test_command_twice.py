@@ -1,0 +1,88 @@
+"""A command's button clicked again, or its shortcut pressed again, while the command waits for the controller does
+not run it a second time (decision I34; found under Xvfb on a 9600-baud line: Prepare Singlestep clicked again
+during its debug download was compiled, downloaded and prepared again once the first had ended). The download is
+held on the line (tests/ui/gui_thread_check.py) while the user clicks or presses the key, 120 ms apart."""
+
+from __future__ import annotations
+
+import threading
+
+import pytest
+from PySide6.QtCore import Qt, QTimer
+from PySide6.QtWidgets import QToolBar
+
+from tests.ui.gui_thread_check import HOLD, RECORD, checking, connect, program, said
+
+PACE_MS = 120
+
+
+@pytest.fixture
+def checked(window):
+    yield from checking(window)
+
+
+def toolbar_button(w, text: str):
+    action = w.actions_by_text[text]
+    for bar in w.findChildren(QToolBar):
+        if (button := bar.widgetForAction(action)) is not None:
+            return button
+    raise AssertionError(f"no toolbar button for {text}")
+
+
+def held_download(qtbot, again) -> None:
+    """Holds the next download until `again()` was done twice at a human pace, then lets it through."""
+    arrived, through = threading.Event(), threading.Event()
+    HOLD["download"] = (arrived, through)
+    presses = [0]
+
+    def look() -> None:
+        if not arrived.is_set():
+            QTimer.singleShot(20, look)
+            return
+        if presses[0] < 2:
+            presses[0] += 1
+            again()
+            QTimer.singleShot(PACE_MS, look)
+            return
+        through.set()
+
+    QTimer.singleShot(0, look)
+    return through, presses
+
+
+def downloads() -> int:
+    return sum(op == "download" for op, _ in RECORD.taken())
+
+
+def test_prepare_singlestep_clicked_again_while_it_downloads_runs_once(checked, qtbot, tmp_path):
+    connect(qtbot, checked)
+    program(checked, tmp_path)
+    button = toolbar_button(checked, "Prepare Singlestep")
+    RECORD.clear()
+    through, presses = held_download(qtbot, lambda: qtbot.mouseClick(button, Qt.MouseButton.LeftButton))
+    try:
+        qtbot.mouseClick(button, Qt.MouseButton.LeftButton)
+    finally:
+        through.set()
+    said(qtbot, checked, "Prepare stepping ok")
+    qtbot.wait(3 * PACE_MS)        # a click that was kept would run now
+    assert presses[0] == 2
+    assert downloads() == 1, RECORD.taken()
+
+
+def test_execute_pressed_again_while_it_downloads_runs_once(checked, qtbot, tmp_path):
+    connect(qtbot, checked)
+    program(checked, tmp_path)
+    editor = checked.current_editor()
+    editor.setFocus()
+    RECORD.clear()
+    through, presses = held_download(qtbot, lambda: qtbot.keyClick(editor, Qt.Key.Key_F5))
+    try:
+        qtbot.keyClick(editor, Qt.Key.Key_F5)
+    finally:
+        through.set()
+    said(qtbot, checked, "ran 1")
+    qtbot.wait(3 * PACE_MS)
+    assert presses[0] == 2
+    assert downloads() == 1, RECORD.taken()
+    assert checked.messages.toPlainText().count("ran 1") == 1
