@@ -11,7 +11,8 @@ import pytest
 from PySide6.QtCore import Qt, QTimer
 from PySide6.QtWidgets import QToolBar
 
-from tests.ui.gui_thread_check import HOLD, RECORD, checking, connect, program, said
+from tests.modal import answering
+from tests.ui.gui_thread_check import HOLD, RECORD, checking, click, connect, program, said
 
 PACE_MS = 120
 
@@ -29,10 +30,10 @@ def toolbar_button(w, text: str):
     raise AssertionError(f"no toolbar button for {text}")
 
 
-def held_download(qtbot, again) -> None:
-    """Holds the next download until `again()` was done twice at a human pace, then lets it through."""
+def held_download(qtbot, again, op: str = "download"):
+    """Holds the next `op` request until `again()` was done twice at a human pace, then lets it through."""
     arrived, through = threading.Event(), threading.Event()
-    HOLD["download"] = (arrived, through)
+    HOLD[op] = (arrived, through)
     presses = [0]
 
     def look() -> None:
@@ -50,8 +51,8 @@ def held_download(qtbot, again) -> None:
     return through, presses
 
 
-def downloads() -> int:
-    return sum(op == "download" for op, _ in RECORD.taken())
+def downloads(kind: str = "download") -> int:
+    return sum(op == kind for op, _ in RECORD.taken())
 
 
 def test_prepare_singlestep_clicked_again_while_it_downloads_runs_once(checked, qtbot, tmp_path):
@@ -86,3 +87,32 @@ def test_execute_pressed_again_while_it_downloads_runs_once(checked, qtbot, tmp_
     assert presses[0] == 2
     assert downloads() == 1, RECORD.taken()
     assert checked.messages.toPlainText().count("ran 1") == 1
+
+
+def test_programs_start_clicked_again_while_it_starts_runs_once(checked, qtbot, tmp_path):
+    """Controller > Programs is a dialog of its own: its Start clicked again while the start waits."""
+    connect(qtbot, checked)
+    program(checked, tmp_path)
+    outcome = checked.development.compile_current()       # set-up: program 0 stored on the controller
+    checked.bridge.link.download(outcome.result.image.to_bytes(), number=0, name="ran")
+    RECORD.clear()
+    held: list = []
+
+    def start_twice(dialog) -> None:
+        qtbot.waitUntil(lambda: dialog.table.rowCount() == 1, timeout=20_000)
+        rect = dialog.table.visualItemRect(dialog.table.item(0, 0))
+        qtbot.mouseClick(dialog.table.viewport(), Qt.MouseButton.LeftButton, pos=rect.center())
+        start = dialog.buttons["Start"]
+        held.extend(held_download(qtbot, lambda: click(qtbot, start), op="start"))
+        try:
+            click(qtbot, start)
+        finally:
+            held[0].set()
+        click(qtbot, dialog.buttons["Close"])
+
+    with answering(qtbot, start_twice, timeout=20_000):
+        checked.actions_by_text["Programs..."].trigger()
+    said(qtbot, checked, "ran 1")
+    qtbot.wait(3 * PACE_MS)
+    assert held[1][0] == 2
+    assert downloads("start") == 1, RECORD.taken()

@@ -105,17 +105,18 @@ class _CommandGuard(QObject):
     """While a command of `window` waits, and while the input that came meanwhile is delivered after it, a
     shortcut or a click on a button, menu or toolbar of that window would start a command again (a second click on
     Prepare Singlestep ran it twice, one after the other): those are dropped. Typing is kept, and other windows (a
-    dialog the wait opened) get everything."""
+    dialog the wait opened) get everything. The active window at the start is guarded too: Programs' Start waits
+    for the main window's controller from a dialog of its own."""
 
     def __init__(self, window: QWidget) -> None:
         super().__init__()
-        self.window = window
+        self.windows = {window, QApplication.activeWindow()} - {None}
 
     def _ours(self, obj: QObject) -> bool:
         widget = obj.parent() if isinstance(obj, QAction) else obj
         while isinstance(widget, QMenu) and widget.parentWidget() is not None:   # a menu is a window of its own
             widget = widget.parentWidget()
-        return isinstance(widget, QWidget) and widget.window() is self.window
+        return isinstance(widget, QWidget) and widget.window() in self.windows
 
     def eventFilter(self, obj: QObject, event: QEvent) -> bool:  # noqa: N802 - Qt's name
         kind = event.type()
