@@ -70,9 +70,9 @@ class ControllerRegistry:
         self.default = default or InterfaceConfig()
         self.interfaces: dict[str, OpenInterface] = {}
         self.known: dict[str, InterfaceConfig] = {}                           # every interface opened so far
-        self.windows: list = []                                               # the APOSS windows sharing these
+        self.sessions: list = []                                              # the windows' sessions sharing these
         self.closed_listeners: list[Callable[[str, list[int]], None]] = []   # (interface key, controller ids)
-        self.owners: dict[tuple[str, int], object] = {}                       # (key, id) → the window holding it
+        self.owners: dict[tuple[str, int], object] = {}                       # (key, id) → the session holding it
 
     # --- interfaces -------------------------------------------------------------------------------------
     def open_interface(self, *, config: InterfaceConfig | None = None) -> OpenInterface:

@@ -18,29 +18,52 @@ from functools import partial
 from PySide6.QtWidgets import QToolButton
 
 from motiontool.comms.protocol import LinkError
+from motiontool.session.session import Session, SessionEvent
 from motiontool.ui.link_jobs import waiting
 
 
 class Connection:
+    """The Qt adapter of the window's Session (decision I35): the session decides, this shows it."""
+
     def __init__(self, window) -> None:
         self.w = window
         self.registry = window.controllers
-        self.interface_key: str | None = None      # the interface of the window's controller (kept when lost)
-        self.lost_reason = ""
+        self.session = Session(self.registry)
+        self.session.listeners.append(self._session_event)
         self.reconnect_button = QToolButton(window)
         self.reconnect_button.setText("Reconnect")
         self.reconnect_button.setToolTip("Connect again to the same controller on the same interface")
         self.reconnect_button.clicked.connect(lambda *_: self.reconnect())
         self.reconnect_button.hide()
         window.statusBar().addPermanentWidget(self.reconnect_button)
-        self.registry.windows.append(window)
-        self.registry.closed_listeners.append(self._closed)
+
+    def _run(self, doing: str, work):
+        return waiting(self.w, doing, work)
+
+    def _session_event(self, event: SessionEvent) -> None:
+        if event.kind == "connected":
+            self.reconnect_button.hide()
+            self.w.bridge.attach(self.session.link, f"Controller {event.controller_id} ({self.interface_description})",
+                                 controller_id=event.controller_id)
+        elif event.kind == "disconnected":
+            self.w.bridge.detach(close=False)
+        elif event.kind == "lost":
+            self.reconnect_button.show()
+        if event.message:
+            self.w.messages.ide(event.message)
 
     # --- what the window shows ---------------------------------------------------------------------------
     @property
+    def interface_key(self) -> str | None:
+        return self.session.interface_key
+
+    @property
+    def lost_reason(self) -> str:
+        return self.session.lost_reason
+
+    @property
     def interface_description(self) -> str:
-        iface = self.registry.interfaces.get(self.interface_key or "")
-        return iface.config.description if iface else self.registry.default.description
+        return self.session.interface_description
 
     def title_suffix(self, *, error: bool = True) -> str:
         """" [Controller: 1 FC: /dev/ttyUSB0 9600 baud]" while connected, " [Controller: 1 … — Lost connection]"
@@ -61,76 +84,23 @@ class Connection:
     def select(self, controller_id: int, *, interface: str | None = None) -> bool:
         """Connect this window to a controller (the default interface when none is named); the controller it
         leaves keeps running its program; a controller another window holds moves here."""
-        key = interface or self.registry.default.key
-
-        def open_and_identify():
-            try:
-                link = self.registry.link(controller_id, interface=key)
-                return link, link.identify()
-            except OSError as exc:   # a port that cannot be opened: said as it is, not as a failed request
-                raise LinkError(str(exc)) from exc
-
-        try:
-            link, ident = waiting(self.w, f"Connecting to controller {controller_id} …", open_and_identify)
-        except (LinkError, ValueError) as exc:
-            self.w.messages.ide(f"Connection to controller {controller_id} failed: {exc}")
-            return False
-        holder = self.registry.owners.get((key, controller_id))
-        if holder is not None and holder is not self.w:
-            holder.connection.release(f"controller {controller_id} moved to another APOSS window")
-        if self.w.bridge.connected:
-            self.registry.owners.pop((self.interface_key, self.w.bridge.controller_id), None)
-        self.registry.owners[(key, controller_id)] = self.w
-        self.interface_key = key
-        self.lost_reason = ""
-        self.reconnect_button.hide()
-        description = self.interface_description
-        self.w.bridge.attach(link, f"Controller {controller_id} ({description})", controller_id=controller_id)
-        # ide-spec 2.37: the identity and firmware version on connect
-        self.w.messages.ide(f"Connected to controller {controller_id} [{description}] "
-                            f"{ident.product or '?'}, {ident.firmware or '?'}")
-        return True
+        return self.session.select(controller_id, interface=interface, run=self._run)
 
     def connect_default(self) -> bool:
-        """Commands that need a controller connect first: to this window's controller after a loss, else to the
-        default interface's controller."""
-        if self.w.bridge.connected:
-            return True
-        return self.select(self.w.bridge.controller_id, interface=self.interface_key)
+        return self.session.connect_default(run=self._run)
 
     def reconnect(self) -> bool:
-        return self.select(self.w.bridge.controller_id, interface=self.interface_key)
+        return self.session.reconnect(run=self._run)
 
     def release(self, why: str) -> None:
-        """Let go of the controller (its link stays open for whoever takes it)."""
-        if self.w.bridge.connected:
-            self.registry.owners.pop((self.interface_key, self.w.bridge.controller_id), None)
-            self.w.bridge.detach(close=False)
-            if why:
-                self.w.messages.ide(why[:1].upper() + why[1:])
+        self.session.release(why)
 
     def lost(self) -> None:
         """The bridge found the link dead: say so, offer Reconnect (the window stays bound to the controller)."""
-        cid = self.w.bridge.controller_id
-        self.registry.owners.pop((self.interface_key, cid), None)
-        self.lost_reason = "no answer"
-        self.reconnect_button.show()
-        self.w.messages.ide(f"Lost connection to controller {cid} ({self.interface_description})! Press Esc or "
-                            "Reconnect to connect again.")
+        self.session.lost()
 
     def window_closed(self) -> None:
-        """The window closes: its controller stays open for the other windows; the last window closes all."""
-        self.release("")
-        if self._closed in self.registry.closed_listeners:
-            self.registry.closed_listeners.remove(self._closed)
-        if self.w in self.registry.windows:
-            self.registry.windows.remove(self.w)
-        if not self.registry.windows:
-            self.registry.close()
-
-    def _closed(self, key: str, ids: list[int]) -> None:
-        if key == self.interface_key and self.w.bridge.connected and self.w.bridge.controller_id in ids:
-            self.w.bridge.detach(close=False)
+        self.session.close()
 
     # --- every controller of the interface -------------------------------------------------------------------
     def _interface_links(self, *, all_in_range: bool):
