@@ -8,7 +8,8 @@ import sys
 
 import pytest
 
-from motiontool.comms.links import open_link, scheme_help
+from motiontool.comms.links import open_link, parse_link_spec, scheme_help
+from motiontool.comms.protocol import LinkError
 
 PROBE = """
 import sys
@@ -29,7 +30,8 @@ print("opened:", link.identify().product)
 def test_comms_alone_knows_no_simulator_and_imports_no_controller():
     out = subprocess.run([sys.executable, "-c", PROBE], capture_output=True, text=True, timeout=60, check=True).stdout
     lines = out.splitlines()
-    assert lines[0].startswith("refused: link 'sim': unknown scheme 'sim' (known: ")
+    assert lines[0] == ("refused: link 'sim': the simulators are not registered in this program; call "
+                        "motiontool.controller.schemes.register() first, as the motiontool command does")
     # the FC 300 parameter table is the one pure-data module of the kernel package the FC master reads
     assert lines[1] == "['motiontool.kernel', 'motiontool.kernel.fc300_table']"
     assert lines[2] == "opened: MCO 305 (simulated)"
@@ -49,3 +51,8 @@ def test_the_help_names_the_simulators_once():
     text = scheme_help()
     assert text.count("sim (the embedded simulated controller") == 1
     assert text.count("apcsim[,realtime=F]") == 1
+
+
+def test_an_unknown_scheme_is_named_with_the_known_ones():
+    with pytest.raises(LinkError, match=r"^link 'simx': unknown scheme 'simx' \(known: apcsim, canopen, fc, sim"):
+        open_link(parse_link_spec("simx"))

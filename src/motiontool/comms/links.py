@@ -136,7 +136,7 @@ def open_link(text: str | LinkSpec) -> Link:
     _load_builtin_schemes()
     scheme = _SCHEMES.get(spec.scheme)
     if scheme is None:
-        raise LinkError(f"link '{spec.text}': unknown scheme '{spec.scheme}' (known: {', '.join(link_schemes())})")
+        raise _unknown(spec)
     return scheme.opener(spec)
 
 
@@ -147,12 +147,20 @@ def scan_controllers(text: str | LinkSpec, ids: Iterable[int]) -> list[int]:
     _load_builtin_schemes()
     scheme = _SCHEMES.get(spec.scheme)
     if scheme is None:
-        raise LinkError(f"link '{spec.text}': unknown scheme '{spec.scheme}' (known: {', '.join(link_schemes())})")
+        raise _unknown(spec)
     return scheme.scan(spec, ids) if scheme.scan is not None else list(ids)
+
+
+def _unknown(spec: LinkSpec) -> LinkError:
+    if spec.scheme in SIMULATORS:   # a Python program that builds the IDE's parts itself (decision N56)
+        return LinkError(f"link '{spec.text}': the simulators are not registered in this program; call "
+                         "motiontool.controller.schemes.register() first, as the motiontool command does")
+    return LinkError(f"link '{spec.text}': unknown scheme '{spec.scheme}' (known: {', '.join(link_schemes())})")
 
 
 # --- the built-in schemes ---------------------------------------------------------------------------------------
 MAX_REALTIME = 1000.0  # realtime=FACTOR: virtual time at most this much faster than real time
+SIMULATORS = ("sim", "apcsim")   # the controller's side registers them (controller/schemes.py)
 
 _loaded = False
 
