@@ -16,8 +16,8 @@ from collections.abc import Callable
 from typing import Any
 
 from PySide6.QtCore import QCoreApplication, QEvent, QEventLoop, QObject, Qt, Signal, Slot
-from PySide6.QtGui import QAction
-from PySide6.QtWidgets import QAbstractButton, QApplication, QMenu, QMenuBar, QWidget
+from PySide6.QtGui import QAction, QKeyEvent
+from PySide6.QtWidgets import QAbstractButton, QApplication, QDialog, QMenu, QMenuBar, QWidget
 
 from motiontool.comms.protocol import LinkError
 
@@ -102,15 +102,19 @@ _CLICKS = (QEvent.Type.MouseButtonPress, QEvent.Type.MouseButtonRelease, QEvent.
 
 
 class _CommandGuard(QObject):
-    """While a command of `window` waits, and while the input that came meanwhile is delivered after it, a
-    shortcut or a click on a button, menu or toolbar of that window would start a command again (a second click on
-    Prepare Singlestep ran it twice, one after the other): those are dropped. Typing is kept, and other windows (a
-    dialog the wait opened) get everything. The active window at the start is guarded too: Programs' Start waits
-    for the main window's controller from a dialog of its own."""
+    """What would start a command again while a command of `window` waits (a second click on Prepare Singlestep
+    ran it twice, one after the other) is dropped: during the wait, a shortcut or a click on a button, menu or
+    toolbar of that window (a test's input comes at once); when the wait ends, the input that waited (a person's)
+    is delivered inside the command, between its steps, so there every click, wheel turn and shortcut of that
+    window, a key on a button and Return, Enter and Escape that reach a dialog (its default button) are dropped:
+    a click on another program's tab must not change what the command compiles next. Typing is kept, and windows
+    opened meanwhile (a dialog) get everything. The active window at the start is guarded too: Programs' Start waits for
+    the main window's controller from a dialog of its own."""
 
     def __init__(self, window: QWidget) -> None:
         super().__init__()
         self.windows = {window, QApplication.activeWindow()} - {None}
+        self.draining = False
 
     def _ours(self, obj: QObject) -> bool:
         widget = obj.parent() if isinstance(obj, QAction) else obj
@@ -122,7 +126,17 @@ class _CommandGuard(QObject):
         kind = event.type()
         if kind == QEvent.Type.Shortcut or (kind in _CLICKS and isinstance(obj, (QAbstractButton, QMenu, QMenuBar))):
             return self._ours(obj)
+        if not self.draining:
+            return False
+        if kind in _CLICKS or kind == QEvent.Type.Wheel:
+            return self._ours(obj)
+        if kind in (QEvent.Type.KeyPress, QEvent.Type.KeyRelease) and isinstance(event, QKeyEvent) and (
+                isinstance(obj, QAbstractButton) or (isinstance(obj, QDialog) and event.key() in _DIALOG_KEYS)):
+            return self._ours(obj)
         return False
+
+
+_DIALOG_KEYS = (Qt.Key.Key_Return, Qt.Key.Key_Enter, Qt.Key.Key_Escape)   # its default button, Cancel
 
 
 _guarding = [0]   # waits under way: the outermost one delivers, and drops, what came during all of them
@@ -146,6 +160,7 @@ def waiting(window, text: str, work: Callable[[], Any]) -> Any:
     finally:
         _guarding[0] -= 1
         if _guarding[0] == 0:   # the clicks and keys that waited are delivered now, through the guard
+            guard.draining = True
             QCoreApplication.processEvents()
         app.removeEventFilter(guard)
         QApplication.restoreOverrideCursor()
