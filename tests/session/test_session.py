@@ -156,3 +156,27 @@ def test_the_last_session_closing_closes_every_link(registry):
     second.close()
     assert registry.sessions == [] and registry.interfaces == {}
     assert not any(link.alive for link in links)
+
+
+def test_a_session_closed_while_it_connects_attaches_nothing(registry):
+    """The window closed while `run` waited for the controller (its closeEvent runs inside the wait): nothing is
+    attached, no one owns the controller; the last session's registry closes the link opened after its close."""
+    other, session = Session(registry), Session(registry)
+    events = listen(session)
+
+    def closing_first(_doing, work):
+        session.close()
+        return work()
+
+    assert not session.select(1, run=closing_first)
+    assert not session.connected and registry.owners == {} and events == []
+    assert registry.link(1).alive            # the other session may take it
+    other.close()
+    last = Session(registry)
+
+    def closing_first_last(_doing, work):
+        last.close()
+        return work()
+
+    assert not last.select(1, run=closing_first_last)
+    assert registry.interfaces == {} and not last.connected

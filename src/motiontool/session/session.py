@@ -45,6 +45,7 @@ class Session:
         self.link: Link | None = None
         self.identity: Identity | None = None
         self.lost_reason = ""
+        self.closed = False
         self.listeners: list[Callable[[SessionEvent], None]] = []
         registry.sessions.append(self)
         registry.closed_listeners.append(self._closed)
@@ -82,6 +83,10 @@ class Session:
                               lambda: self.open(controller_id, key))
         except (LinkError, ValueError) as exc:
             self._tell("failed", f"Connection to controller {controller_id} failed: {exc}", controller_id=controller_id)
+            return False
+        if self.closed:   # the window closed while `run` waited: the controller stays no one's (decision I35)
+            if not self.registry.sessions:
+                self.registry.close()   # the last window's close came before the link was opened: close it too
             return False
         self.attach(controller_id, key, link, ident)
         return True
@@ -131,6 +136,7 @@ class Session:
 
     def close(self) -> None:
         """The window closes: its controller stays open for the other sessions; the last one closes all."""
+        self.closed = True
         self.release("")
         if self._closed in self.registry.closed_listeners:
             self.registry.closed_listeners.remove(self._closed)
