@@ -9,12 +9,10 @@ and says what it waits for (ui/link_jobs.waiting, decision I34).
 
 from __future__ import annotations
 
-from pathlib import Path
-
 from PySide6.QtCore import QObject, QTimer
-from PySide6.QtWidgets import QInputDialog
 
 from motiontool.comms.protocol import LinkError
+from motiontool.session.debug import DebugSession
 from motiontool.ui.compiler_settings import NO_XREF
 from motiontool.ui.link_jobs import waiting
 from motiontool.ui.watch import WatchPane
@@ -42,7 +40,10 @@ class Debugger(QObject):
     def __init__(self, window) -> None:
         super().__init__(window)
         self.w = window
-        self.editor = None
+        self.editor = None   # the editor whose program is being debugged
+        # the debug run's requests and state (session/debug.py); it says what went wrong in the Communication pane
+        self.run = DebugSession(window.connection.session, window.messages.ide,
+                                lambda doing, work: waiting(window, doing, work))
         self.watch = WatchPane(window)
         self.watch.set_reader(self.read_watch)
         self.watch.set_writer(self.write_watch)
@@ -56,13 +57,6 @@ class Debugger(QObject):
 
     def _link(self):
         return self.w.bridge.link
-
-    def _report(self, exc: Exception) -> None:
-        self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: {exc}")
-
-    def _wait(self, doing: str, work):
-        """`work()` (link requests only, no widget) on a thread; user input waits, so no command starts twice."""
-        return waiting(self.w, f"Controller {self.w.bridge.controller_id}: {doing} …", work)
 
     # --- session ---------------------------------------------------------------------------------------
     def prepare(self) -> bool:
@@ -86,27 +80,15 @@ class Debugger(QObject):
             dev.goto_first_error(outcome)
             return False
         image = outcome.result.image
-        size = len(image.to_bytes())
-        messages.ide(f"Compiling debug ok ({size} bytes)")
+        messages.ide(f"Compiling debug ok ({len(image.to_bytes())} bytes)")
         editor = self.w.current_editor()
-        link = self._link()
-        stack = dev.compiler_settings().stack_size
 
-        def send() -> None:
-            if link.status().program_state == "running":
-                link.break_program()
-            link.download(image.to_bytes(), name=image.name, stack_size=stack)
+        def loaded(lines) -> list[int]:
+            editor.set_debug_lines(set(lines))
+            return [n for n in editor.breakpoints() if n in editor.debug_lines]
 
-        try:
-            self._wait(f"downloading {Path(image.name).name} for debugging", send)
-            messages.ide(f"Loading {size} bytes ok")
-            editor.set_debug_lines({e.line for e in image.lines if e.file == 0})
-            marks = [n for n in editor.breakpoints() if n in editor.debug_lines]
-            self._wait("starting it before its first statement",
-                       lambda: (link.set_breakpoints(marks), link.start(step=True)))
-        except LinkError as exc:
+        if not self.run.prepare(image, dev.compiler_settings().stack_size, loaded):
             editor.end_debug()
-            self._report(exc)
             return False
         self.editor = editor
         dev.ran[self.w.bridge.controller_id] = editor
@@ -122,13 +104,15 @@ class Debugger(QObject):
     def go(self) -> None:
         """Go (DG L2436-2438): run to the next breakpoint."""
         if self.active:
-            self._call("running to the next breakpoint", lambda link: link.continue_program())
+            self.run.go()
+            self.w.bridge.poll()
 
     def step(self) -> None:
         """Singlestep F9 (DG L2440-2442): run the yellow statement, stop before the next one."""
         if self.active:
             self.editor.set_debug_current(None)
-            self._call("stepping", lambda link: link.step())
+            self.run.step()
+            self.w.bridge.poll()
 
     def end(self) -> None:
         """End Debug (DG L2448-2450): leave debug mode; breakpoints stay for the next run."""
@@ -138,33 +122,12 @@ class Debugger(QObject):
         editor.breakpointsChanged.disconnect(self._send_breakpoints)
         editor.variableEditRequested.disconnect(self.change_value)
         editor.end_debug()
-        link = self._link()
-        if link is not None:
-            def stop() -> None:
-                if link.status().program_state in ("running", "break"):
-                    link.break_program()
-                link.set_breakpoints([])
-
-            try:
-                self._wait("ending the debug session", stop)
-            except LinkError as exc:
-                self._report(exc)
+        self.run.end()
         self.w.messages.ide("Debug ended")
 
-    def _call(self, doing: str, action) -> None:
-        link = self._link()
-        if link is None:
-            self._report(LinkError("not connected"))
-            return
-        try:
-            self._wait(doing, lambda: action(link))
-        except LinkError as exc:
-            self._report(exc)
-        self.w.bridge.poll()
-
     def _send_breakpoints(self) -> None:
-        marks = [n for n in self.editor.breakpoints() if n in self.editor.debug_lines]
-        self._call("setting the breakpoints", lambda link: link.set_breakpoints(marks))
+        self.run.set_breakpoints(self.editor.breakpoints())
+        self.w.bridge.poll()
 
     def _status_changed(self, status) -> None:
         if not self.active:
@@ -209,19 +172,14 @@ class Debugger(QObject):
 
     def read_value(self, name: str) -> str | None:
         """The value for the editor's click popup (DG L3440-3444), None when `name` is not a variable."""
-        link = self._link()
-        if link is None:
-            return None
-        try:
-            return format_value(self._wait(f"reading {name}", lambda: link.read_variables([name])[0]))
-        except LinkError:
-            return None
+        value = self.run.read_value(name)
+        return None if value is None else format_value(value)
 
     def change_value(self, name: str) -> None:
         """Right-click → change the variable on the controller (DG L3457-3459)."""
         current = self.read_value(name) or "0"
-        text, ok = QInputDialog.getText(self.w, "Change value", f"New value of {name}:", text=current)
-        if ok:
+        text = self.w.prompts.text("Change value", f"New value of {name}:", default=current)
+        if text is not None:
             self.write_value(name, text)
 
     def write_value(self, name: str, text: str) -> bool:
@@ -230,14 +188,7 @@ class Debugger(QObject):
         except ValueError:
             self.w.messages.ide(f"Change value: {text!r} is not a number")
             return False
-        link = self._link()
-        if link is None:
-            self._report(LinkError("not connected"))
-            return False
-        try:
-            self._wait(f"writing {name}", lambda: link.write_variable(name, value))
-        except LinkError as exc:
-            self._report(exc)
+        if not self.run.write_value(name, value):
             return False
         self.refresh_watch()
         return True

@@ -1,21 +1,19 @@
 """Development menu (DG 2366-2607): Execute, Break, Continue, Syntax Check, Compile to file, Command List.
 
-Everything that touches a controller goes through the window's LinkBridge (a comms Link)."""
+What runs on the controller (Execute, Break, Continue, Execute now) is the window session's ProgramCommands
+(session/program.py); this adds the editor: it compiles the current program and marks its errors."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
 
-from PySide6.QtWidgets import QFileDialog, QMessageBox
-
 from motiontool.aposs.driver import CompileResult, compile_source
-from motiontool.comms.client import ArrayInfo
-from motiontool.comms.protocol import LinkError
 from motiontool.dpl.driver import CheckResult, check_source
 from motiontool.dpl.image import DplImage
 from motiontool.fileio import atomic_write_bytes, write_error
 from motiontool.session.controllers import APC_SIM, InterfaceConfig
+from motiontool.session.program import Program, ProgramCommands
 from motiontool.ui.compiler_settings import CompilerSettings
 from motiontool.ui.compiler_settings import check as compiler_checks
 from motiontool.ui.link_jobs import waiting
@@ -35,11 +33,29 @@ class Development:
 
     def __init__(self, window) -> None:
         self.w = window
-        self.ran: dict[int, object] = {}  # controller ID → the editor whose program was last started there
-        self.images: dict[int, object] = {}  # controller ID → the image downloaded there (Error History's Offset)
+        self._commands: ProgramCommands | None = None
         # (controller ID, time_ms, error number) → (editor, program label) of the program that raised it: the
         # controller's error history has no program, so the IDE notes it as each error arrives (I19)
         self.error_programs: dict[tuple[int, int, int], tuple[object, str]] = {}
+
+    @property
+    def commands(self) -> ProgramCommands:
+        """Execute's steps on the window's session (session/program.py): requests off the GUI thread, questions
+        through the window's prompts, what happened in the Communication pane."""
+        if self._commands is None:
+            self._commands = ProgramCommands(self.w.connection.session, self.w.prompts, self.w.messages.ide,
+                                             lambda doing, work: waiting(self.w, doing, work))
+        return self._commands
+
+    @property
+    def ran(self) -> dict[int, object]:
+        """Controller ID → the editor whose program was last started there."""
+        return self.commands.ran
+
+    @property
+    def images(self) -> dict[int, object]:
+        """Controller ID → the image downloaded there (Error History's Offset)."""
+        return self.commands.images
 
     def note_error(self, controller_id: int, time_ms: int, number: int) -> None:
         """An error event: remember which program ran there (the editor may be closed later; its label stays)."""
@@ -144,11 +160,9 @@ class Development:
         if target is None:
             editor = self.w.current_editor()
             default = Path(editor.property("path") or "program.m").with_suffix(".bin")
-            chosen, _ = QFileDialog.getSaveFileName(self.w, "Compile to file", str(default),
-                                                    "Program image (*.bin)")
-            if not chosen:
+            target = self.w.prompts.save_path("Compile to file", str(default), "Program image (*.bin)")
+            if target is None:
                 return False
-            target = Path(chosen)
         try:
             atomic_write_bytes(target, outcome.result.image.to_bytes())
         except OSError as exc:
@@ -163,7 +177,8 @@ class Development:
     # --- run -------------------------------------------------------------------------------------------
     def execute(self, *, ask: bool = True) -> bool:
         """F5 (DG 2380-2391): connect, stop a running program (after asking), compile, download to temporary
-        memory, start. A DPL program runs on the simulated APC, an APOSS program on the default interface."""
+        memory, start (session/program.py). A DPL program runs on the simulated APC, an APOSS program on the
+        default interface."""
         if not self._controller_for_language():
             return False
         if not self.connect_default():
@@ -171,52 +186,28 @@ class Development:
         debugger = getattr(self.w, "debugger", None)
         if debugger is not None and debugger.active:  # F5 runs the normal build: leave the debug session
             debugger.end()
-        link = self.w.bridge.link
-        cid = self.w.bridge.controller_id
-        try:
-            state = waiting(self.w, f"Controller {cid}: asking its state …", lambda: link.status().program_state)
-            if state == "running":
-                if ask and QMessageBox.question(self.w, "Execute", "The controller is executing a program. "
-                                                "Stop it?") != QMessageBox.StandardButton.Yes:
-                    return False
-                waiting(self.w, f"Controller {cid}: stopping its program …", link.break_program)
-            outcome = self.compile_current()
-            if outcome is None:
-                return False
-            if not outcome.result.ok:
-                for d in outcome.result.diagnostics:
-                    self.w.messages.ide(d.format())
-                self.w.messages.ide("Compilation error(s): program not executed")
-                self.goto_first_error(outcome)
-                return False
-            if isinstance(outcome.result, CompileResult):
-                image = outcome.result.image
-            else:  # a DPL program goes as its source; the watch offers its variables and arrays
-                image = DplImage(self.w.current_editor().property("path") or "Untitled.dpl", outcome.result.source)
-                symbols = outcome.result.symbols
-                self.w.debugger.watch.set_variables(sorted(symbols.variables), sorted(symbols.arrays.items()))
-            if isinstance(outcome.result, CompileResult) and not self._arrays_fit(link, image, ask=ask):
-                return False
-            stack = self.compiler_settings().stack_size if isinstance(outcome.result, CompileResult) else None
-            test = self._test_settings()   # the header's Test-settings/-inputs, when the user chose to apply them
-            if test is None:
-                return False
+        return self.commands.execute(self._build, self._test_settings, ask=ask)
 
-            def send() -> None:
-                for key, value in test.settings:
-                    link.write_parameter(key, value)
-                link.download(image.to_bytes(), name=Path(image.name).name, stack_size=stack)
-
-            waiting(self.w, f"Controller {cid}: downloading {Path(image.name).name} …", send)
-            # before the start: its events (an error's DIM line, ui/pending_error.py) arrive while start waits
-            self.ran[cid] = self.w.current_editor()
-            self.images[cid] = getattr(outcome.result, "image", None)
-            waiting(self.w, f"Controller {cid}: starting …", lambda: link.start(inputs=test.inputs))
-        except LinkError as exc:
-            self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: {exc}")
-            return False
-        self.w.messages.ide(f"Executing {Path(image.name).name} on controller {self.w.bridge.controller_id}")
-        return True
+    def _build(self) -> Program | None:
+        """Execute's compile step: the current editor's program, its errors marked there."""
+        outcome = self.compile_current()
+        if outcome is None:
+            return None
+        if not outcome.result.ok:
+            for d in outcome.result.diagnostics:
+                self.w.messages.ide(d.format())
+            self.w.messages.ide("Compilation error(s): program not executed")
+            self.goto_first_error(outcome)
+            return None
+        editor = self.w.current_editor()
+        if isinstance(outcome.result, CompileResult):
+            image = outcome.result.image
+            return Program(image, self.compiler_settings().stack_size, [(v.name, v.dims) for v in image.dims],
+                           origin=editor, listing=image)
+        # a DPL program goes as its source; the watch offers its variables and arrays
+        symbols = outcome.result.symbols
+        self.w.debugger.watch.set_variables(sorted(symbols.variables), sorted(symbols.arrays.items()))
+        return Program(DplImage(editor.property("path") or "Untitled.dpl", outcome.result.source), origin=editor)
 
     def _test_settings(self):
         """Offer a header's test settings (ui/io_panel.py); what is to be applied, None for a header that cannot
@@ -232,35 +223,6 @@ class Development:
         except HeaderError as exc:
             self.w.messages.ide(f"{exc}: program not executed")
             return None
-
-    def _arrays_fit(self, link, image, *, ask: bool) -> bool:
-        """The controller keeps its DIM arrays for every program and a size never changes (CR 1042-1049), so a
-        program whose DIM differs from an earlier one's stops with error 176 (170 when it skips one) before its
-        first statement, and the error stays pending. Execute does not delete arrays behind the user's back (a
-        program may rely on them, as sample 13 does; DG 2380-2391 names no such step): it says what clashes and
-        offers Reset ▸ Arrays first (decision I20)."""
-        if not image.dims:
-            return True
-        arrays = waiting(self.w, f"Controller {self.w.bridge.controller_id}: reading its arrays …", link.list_arrays)
-        clash = dim_clash(arrays, [(v.name, v.dims) for v in image.dims])
-        if clash is None or not ask:
-            return True
-        box = QMessageBox(QMessageBox.Icon.Question, "Execute", f"{clash}\n\nThe controller keeps DIM arrays "
-                          "for all programs and an array's size cannot change, so the program would stop with "
-                          "error 176 \"Array size wrong\". Delete the controller's arrays (Controller ▸ Reset ▸ "
-                          "Arrays) and execute?", parent=self.w)
-        reset = box.addButton("Reset Arrays and Execute", QMessageBox.ButtonRole.AcceptRole)
-        anyway = box.addButton("Execute Anyway", QMessageBox.ButtonRole.ActionRole)
-        box.addButton(QMessageBox.StandardButton.Cancel)
-        box.exec()
-        chosen = box.clickedButton()
-        box.deleteLater()
-        if chosen is reset:
-            waiting(self.w, f"Controller {self.w.bridge.controller_id}: deleting its arrays …",
-                    lambda: link.reset("arrays"))
-            self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: arrays deleted (Reset ▸ Arrays)")
-            return True
-        return chosen is anyway
 
     def _controller_for_language(self) -> bool:
         """Move the window to the simulated APC for a DPL program, and back to the default interface for APOSS."""
@@ -280,22 +242,10 @@ class Development:
 
     def break_program(self) -> None:
         """Esc (DG 2054-2062): without a controller it connects; with one it aborts the running program."""
-        if not self.w.bridge.connected:
-            self.connect_default()
-            return
-        link = self.w.bridge.link
-        try:
-            waiting(self.w, f"Controller {self.w.bridge.controller_id}: stopping its program …", link.break_program)
-        except LinkError as exc:
-            self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: {exc}")
+        self.commands.break_program()
 
     def continue_program(self) -> None:
-        if self.connect_default():
-            link = self.w.bridge.link
-            try:
-                waiting(self.w, f"Controller {self.w.bridge.controller_id}: continuing …", link.continue_program)
-            except LinkError as exc:
-                self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: {exc}")
+        self.commands.continue_program()
 
     def execute_line(self, line: str) -> None:
         """Command List → Execute now: the line runs as a one-line temporary program."""
@@ -306,21 +256,4 @@ class Development:
             for d in result.errors:
                 self.w.messages.ide(d.format())
             return
-        link = self.w.bridge.link
-        try:
-            waiting(self.w, f"Controller {self.w.bridge.controller_id}: executing the command …",
-                    lambda: (link.download(result.image.to_bytes(), name="command"), link.start()))
-        except LinkError as exc:
-            self.w.messages.ide(f"Controller {self.w.bridge.controller_id}: {exc}")
-
-
-def dim_clash(arrays: list[ArrayInfo], dims: list[tuple[str, list[int]]]) -> str | None:
-    """What in a program's DIM does not fit the controller's arrays (C:1024-1041: a prefix of the stored arrays
-    with the same sizes, new ones appended), or None."""
-    for k, (name, shape) in enumerate(dims):
-        size = shape[0] * (shape[1] if len(shape) > 1 else 1)
-        if k < len(arrays) and int(arrays[k].size) != size:
-            return (f"This program's DIM {name}{''.join(f'[{d}]' for d in shape)} ({size} elements) is array "
-                    f"{k + 1}, which the controller already has with {arrays[k].size} elements "
-                    f"(\"{arrays[k].name}\", DIMmed by an earlier program).")
-    return None
+        self.commands.execute_line(result.image)

@@ -23,11 +23,13 @@ from motiontool import __version__
 from motiontool.aposs.driver import CompileResult
 from motiontool.dpl.driver import is_dpl
 from motiontool.resources import resources_path
+from motiontool.session.prompts import Prompts
 from motiontool.ui.bridge import LinkBridge
 from motiontool.ui.development import Development
 from motiontool.ui.editor.bookmarks import BookmarkStore
 from motiontool.ui.editor.code_editor import CodeEditor
 from motiontool.ui.messages import MessagesPane
+from motiontool.ui.prompts import QtPrompts
 from motiontool.ui.recovery import Autosave, Recovery
 
 LIVE_CHECK_MS = 600   # live diagnostics after this pause in typing
@@ -40,9 +42,11 @@ class MainWindow(QMainWindow):
 
     ask_to_save = True  # tests and scripted runs switch the "Save changes?" question off
 
-    def __init__(self, settings: QSettings | None = None, realtime_factor: float = 1.0, controllers=None) -> None:
+    def __init__(self, settings: QSettings | None = None, realtime_factor: float = 1.0, controllers=None,
+                 prompts: Prompts | None = None) -> None:
         super().__init__()
         self.settings = settings or QSettings()
+        self.prompts: Prompts = prompts or QtPrompts(self)   # what commands ask the user goes through this
         self.realtime_factor = realtime_factor
         self.setWindowTitle("motiontool — APOSS")
         self.resize(1180, 760)
@@ -288,12 +292,10 @@ class MainWindow(QMainWindow):
             return True
         if editor.document().isModified() and self.ask_to_save:
             name = self.tabs.tabText(index).removesuffix(" *")  # the tab's "changed" mark is not part of the name
-            answer = QMessageBox.question(self, "Close", f"Save changes to {name}?",
-                                          QMessageBox.StandardButton.Save | QMessageBox.StandardButton.Discard
-                                          | QMessageBox.StandardButton.Cancel)
-            if answer == QMessageBox.StandardButton.Cancel:
+            answer = self.prompts.save_changes("Close", f"Save changes to {name}?")
+            if answer is None:
                 return False
-            if answer == QMessageBox.StandardButton.Save and not self.save(editor=editor):
+            if answer == "save" and not self.save(editor=editor):
                 return False
         if editor.property("path"):
             self._save_bookmarks(editor, editor.property("path"))
