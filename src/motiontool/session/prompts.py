@@ -17,6 +17,10 @@ from typing import Any, Protocol
 
 
 class Prompts(Protocol):
+    def within(self, owner: Any) -> Prompts:
+        """The same prompts shown over `owner` (a dialog of the window asking from inside it)."""
+        ...
+
     def confirm(self, title: str, text: str) -> bool:
         """A Yes/No question; True for Yes."""
         ...
@@ -67,6 +71,9 @@ class ScriptedPrompts:
     @classmethod
     def answering(cls, answers: Iterable[Any] = ()) -> ScriptedPrompts:
         return cls(deque(answers))
+
+    def within(self, owner: Any) -> ScriptedPrompts:
+        return self
 
     def _answer(self, kind: str, title: str, text: str) -> Any:
         self.asked.append((kind, title, text))

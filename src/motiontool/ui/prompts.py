@@ -16,6 +16,9 @@ class QtPrompts:
     def __init__(self, parent: QWidget | None) -> None:
         self.parent = parent
 
+    def within(self, owner: QWidget) -> QtPrompts:
+        return type(self)(owner)
+
     def confirm(self, title: str, text: str) -> bool:
         return QMessageBox.question(self.parent, title, text) == Button.Yes
 
