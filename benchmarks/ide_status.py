@@ -256,7 +256,7 @@ def polling_scope(window, seconds: float, QEventLoop, QTimer):  # noqa: N803 - Q
     loop = QEventLoop()
     QTimer.singleShot(int(1000 * seconds), loop.quit)
     loop.exec()
-    polls = scope.polling.polls
+    polls = scope.run.polling.polls
     scope.stop_action.trigger()
     timer.stop()
     scope.close()

@@ -46,7 +46,7 @@ def live(app) -> float:
         for c in w.scope.curves:
             c.buffer.extend(t, np.sin(t / 300) * 1000)
         t0 += 20
-        w._tick()
+        w.run.tick()
         w.grab()
         frames += 1
     return frames / (time.perf_counter() - start)

@@ -65,7 +65,7 @@ def main() -> None:
 
     def frame():
         try:
-            window._tick()
+            window.run.tick()
             window.chart.grab()   # paint what a visible window paints: the chart and the list
             window.list.viewport().grab()
             counts["frames"] += 1

@@ -96,7 +96,7 @@ def main() -> None:
             newest = scope.curve(f"{k + 1}: APOS").raw()[0]
             if newest.size:
                 ages.append(link.service.controller.time_ms - newest[-1])
-        window._tick()
+        window.run.tick()
         window.chart.grab()   # what changes in a frame: the chart and (every 4th frame) the list
         window.list.viewport().grab()
         now = time.monotonic()

@@ -40,7 +40,7 @@ def test_the_scope_records_apc_read_parameters_by_alias(qtbot):
     link.start()
     for _ in range(60):
         link.advance(50)
-        w._tick()
+        w.run.tick()
     click(qtbot, w, w.stop_action)
     times, positions = w.scope.curve("1: APC_FB_POS").raw()
     _, speeds = w.scope.curve("1: APC_PROF_OUT_SPD").raw()

@@ -176,7 +176,7 @@ def scope_start_stop(qtbot, w, tmp_path) -> None:
     click(qtbot, start)
     qtbot.waitUntil(lambda: len(scope.scope.curves[0].buffer) > 5, timeout=20_000)
     click(qtbot, stop)
-    qtbot.waitUntil(lambda: not scope.running, timeout=20_000)
+    qtbot.waitUntil(lambda: not scope.run.running, timeout=20_000)
     scope.ask = False
     scope.close()
 
@@ -192,9 +192,9 @@ def scope_single_shot(qtbot, w, tmp_path) -> None:
     start = next(b for b in scope.findChildren(QToolButton) if b.defaultAction() is scope.start_action)
     stop = next(b for b in scope.findChildren(QToolButton) if b.defaultAction() is scope.stop_action)
     click(qtbot, start)
-    qtbot.waitUntil(lambda: scope.single_shot is not None and scope.single_shot.running, timeout=20_000)
+    qtbot.waitUntil(lambda: scope.run.single_shot is not None and scope.run.single_shot.running, timeout=20_000)
     click(qtbot, stop)
-    qtbot.waitUntil(lambda: not scope.running and len(scope.scope.curves[0].buffer) > 0, timeout=20_000)
+    qtbot.waitUntil(lambda: not scope.run.running and len(scope.scope.curves[0].buffer) > 0, timeout=20_000)
     scope.ask = False
     scope.close()
 

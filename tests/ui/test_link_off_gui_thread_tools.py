@@ -185,7 +185,7 @@ def scope_tune(qtbot, w, tmp_path) -> None:
     qtbot.waitUntil(lambda: panel.run.isEnabled(), timeout=20_000)
     RECORD.clear()
     click(qtbot, panel.run)
-    qtbot.waitUntil(lambda: scope.tune is not None and len(scope.tune.results) == 1 and panel.run.isEnabled(),
+    qtbot.waitUntil(lambda: scope.run.tune is not None and len(scope.run.tune.results) == 1 and panel.run.isEnabled(),
                     timeout=30_000)
     scope.close()
 

@@ -48,7 +48,7 @@ def click(qtbot, window, action):
 def run_for(window, link, ms, step=50):
     for _ in range(ms // step):
         link.advance(step)
-        window._tick()
+        window.run.tick()
         answered(window)
 
 
@@ -56,7 +56,7 @@ def answered(window) -> None:
     """The scope asks the recording's status and its polls on threads of their own: let them answer, as the
     window's event loop does between two display refreshes."""
     deadline = time.monotonic() + 10
-    while (window.status_job.busy or window.poll_job.busy) and time.monotonic() < deadline:
+    while (window.run.status_job.busy or window.run.poll_job.busy) and time.monotonic() < deadline:
         QApplication.processEvents()
         time.sleep(0.001)
 
@@ -87,7 +87,7 @@ def test_free_run_posa_trapezoid_and_tracking_error(qtbot, link, make, tmp_path)
     click(qtbot, w, w.start_action)
     start_program(link, POSA)
     run_for(w, link, 1000)
-    assert w.running and not w.chart.region.isVisible()  # navigation not drawn while recording (DG 5843)
+    assert w.run.running and not w.chart.region.isVisible()  # navigation not drawn while recording (DG 5843)
     x, _ = w.chart.items["1: CPOS"].getData()
     assert x is not None and x.size > 10                  # drawn live
     run_for(w, link, 5000)
@@ -148,7 +148,7 @@ def test_single_shot_at_1_ms_uploads_exactly_the_configured_count(qtbot, link, m
     assert all(len(c.buffer) == 0 for c in w.scope.curves)   # nothing drawn while recording
     assert "[recording " in w.windowTitle()
     run_for(w, link, 1300)                                    # full at 750 ms: uploaded without Stop
-    assert not w.single_shot.running and "[recording" not in w.windowTitle()
+    assert not w.run.single_shot.running and "[recording" not in w.windowTitle()
     for c in w.scope.curves:
         t, _ = c.raw()
         assert t.size == 750 and set(np.diff(t)) == {1.0}
@@ -184,7 +184,7 @@ def test_tune_shows_overshoot_for_a_high_kprop_and_less_after_lowering_it(qtbot,
         assert not panel.run.isEnabled()
         link.advance(2500)
         qtbot.waitUntil(lambda: panel.run.isEnabled(), timeout=3000)
-        results.append(w.tune.results[-1])
+        results.append(w.run.tune.results[-1])
     high, low = results
     assert high.overshoot > 5 and low.overshoot < high.overshoot / 2
     assert panel.results.rowCount() == 2 and panel.results.item(0, 1).text() == "20000"
@@ -233,7 +233,7 @@ def test_polling_title_shows_rate_and_load(qtbot, link, make, tmp_path):
     start_program(link, POSA)
     for k in range(60):              # the poll timer reads on the poll thread: one sample per controller instant
         link.advance(50)
-        qtbot.waitUntil(lambda k=k: w.polling.polls == k + 1, timeout=5000)
+        qtbot.waitUntil(lambda k=k: w.run.polling.polls == k + 1, timeout=5000)
     click(qtbot, w, w.stop_action)
     assert len(w.scope.curve("1: KPROP").buffer) == 60
     assert w.list.item_for("1: APOS").parent().text(0) == "Other Curves"   # polled: no group (DG 5406)
@@ -263,7 +263,7 @@ def test_a_poll_of_a_stopped_run_that_answers_late_is_not_taken_into_the_next(qt
     link.advance(500)
     click(qtbot, w, w.start_action)           # a new run while the old read is still on the line
     held.set()
-    qtbot.waitUntil(lambda: w.polling.polls >= 1 and not w.poll_job.busy, timeout=5000)
+    qtbot.waitUntil(lambda: w.run.polling.polls >= 1 and not w.run.poll_job.busy, timeout=5000)
     click(qtbot, w, w.stop_action)
     t, _ = w.scope.curve("1: APOS").raw()
     assert t.size >= 1 and t.min() >= 500        # only samples of the new run
@@ -369,13 +369,13 @@ def test_triggered_free_run_stops_after_one_capture(qtbot, link, make, tmp_path)
     dialog.pre.setValue(100)
     dialog.post.setValue(400)
     dialog.accept()
-    w.trigger_dialog(dialog=dialog)
+    w.run.trigger_dialog(dialog=dialog)
     click(qtbot, w, w.start_action)
     run_for(w, link, 300)
-    assert w.running and len(w.scope.curves[0].buffer) == 0   # armed, waiting
+    assert w.run.running and len(w.scope.curves[0].buffer) == 0   # armed, waiting
     start_program(link, POSA)
     run_for(w, link, 2000)
-    assert not w.running and w.free_run.captures == 1
+    assert not w.run.running and w.run.free_run.captures == 1
     t, y = w.scope.curve("1: CPOS").raw()
     assert t.size == 500 and y[99] < 500 <= y[100]
     shot(w, "trigger", tmp_path)

@@ -19,11 +19,11 @@ def window(qtbot):
 
 
 def record(w, link, ms=200):
-    w.start()
+    w.run.start()
     for _ in range(ms // 50):
         link.advance(50)
-        w._tick()
-    w.stop()
+        w.run.tick()
+    w.run.stop()
 
 
 def test_changing_the_selection_renames_clears_and_records_the_new_field(window, tmp_path):

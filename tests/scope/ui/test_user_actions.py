@@ -53,7 +53,7 @@ def record(scope: ScopeWindow, qtbot, ms: int = 1500) -> None:
     qtbot.wait(ms // 3)
     activate(qtbot, scope)
     qtbot.keyClick(scope, Qt.Key.Key_F9, Qt.KeyboardModifier.ShiftModifier)
-    assert not scope.running
+    assert not scope.run.running
 
 
 def test_add_curve_button_then_free_run_records_apos_and_cpos_while_a_program_moves(window, qtbot):

@@ -3,15 +3,14 @@
 It talks to the controller only through a comms Link: given a LinkBridge (the IDE's) it uses the bridge's
 link and its queued `samples` signal; given a plain Link it relays the link's events into the GUI thread
 itself. Opened from a file it has no link at all until Reconnect (DG 5277-5285). Start/Pause/Stop, the refresh
-and poll timers, the trigger and the Tune move are in `run_control.RunControl`, a mixin of this window.
+and poll timers, the trigger and the Tune move are its part `run` (`run_control.RunControl`).
 """
 
 from __future__ import annotations
 
-import contextlib
 from pathlib import Path
 
-from PySide6.QtCore import QEvent, QObject, Qt, QTimer, Signal
+from PySide6.QtCore import QEvent, QObject, Qt, Signal
 from PySide6.QtGui import QAction, QActionGroup, QKeySequence
 from PySide6.QtWidgets import (
     QDockWidget,
@@ -23,16 +22,9 @@ from PySide6.QtWidgets import (
     QSplitter,
 )
 
-from motiontool.comms.protocol import LinkError
 from motiontool.fileio import reason
 from motiontool.scope import derived, zbo
-from motiontool.scope.acquisition import (
-    FreeRun,
-    Polling,
-    SingleShot,
-    default_group,
-    new_curve,
-)
+from motiontool.scope.acquisition import default_group, new_curve
 from motiontool.scope.curves import Scope
 from motiontool.scope.export import export_csv
 from motiontool.scope.mdf4 import Mdf4Unavailable, export_mdf4
@@ -47,21 +39,19 @@ from motiontool.scope.ui.dialogs import AddCurveDialog, PropertiesDialog, Record
 from motiontool.scope.ui.fft import FftView
 from motiontool.scope.ui.list_menu import show_list_menu
 from motiontool.scope.ui.poll_job import PollJob
-from motiontool.scope.ui.run_control import RunControl
+from motiontool.scope.ui.run_control import LIVE_WINDOW_S, RunControl
 from motiontool.scope.ui.save_name import ask_save_name
 from motiontool.scope.ui.testsetp_load import load_recordings
 
 TITLES = {"free_run": "Free Run", "polling": "Free Run (polling)", "single_shot": "Single Shot",
           "testsetp": "TESTSETP", "tune": "Tune"}
-LIVE_WINDOW_S = 10      # default time shown while recording (decision S32)
-REFRESH_MS = 50         # display refresh while recording (run_control.LIST_EVERY: list and title)
 
 
 class _Relay(QObject):
     event = Signal(object)
 
 
-class ScopeWindow(RunControl, QMainWindow):
+class ScopeWindow(QMainWindow):
     def __init__(self, link_or_bridge=None, variant: str = "free_run", scope: Scope | None = None,
                  parent=None, ask: bool = True, path: Path | None = None):
         super().__init__(parent)
@@ -76,18 +66,8 @@ class ScopeWindow(RunControl, QMainWindow):
         self._link = None
         self._relay = _Relay(self)
         self._relay.event.connect(self._on_event)
-        self.free_run: FreeRun | None = None
-        self.polling = Polling(self.scope, None)
-        self.single_shot: SingleShot | None = None
-        self.tune: Tune | None = None
-        self.paused = False
         self.mouse_t: float | None = None
-        self._ticks = 0
-        self.trigger = None          # (curve name, Trigger) for Free Run, or None
-        self.trigger_single = True
-        self._recording_status = None
-        self.live_window_ms = LIVE_WINDOW_S * 1000.0
-        self._live_width: float | None = None
+        self.run = RunControl(self)
         self._saved_mark: tuple = ()  # the samples as last saved or loaded (unsaved_recording)
 
         self.chart = Chart(self.scope)
@@ -104,7 +84,7 @@ class ScopeWindow(RunControl, QMainWindow):
         self.tune_dock = QDockWidget("Tune", self)
         self.tune_dock.setWidget(self.tune_panel)
         self.addDockWidget(Qt.RightDockWidgetArea, self.tune_dock)
-        self.tune_panel.run.clicked.connect(self.run_tune)
+        self.tune_panel.run.clicked.connect(self.run.run_tune)
         self._build_actions()
         self.chart.cursor_moved.connect(lambda *_: self._update_readout())
         self.chart.mouse_time.connect(self._mouse_time)
@@ -113,19 +93,8 @@ class ScopeWindow(RunControl, QMainWindow):
         self.list.setContextMenuPolicy(Qt.CustomContextMenu)
         self.list.customContextMenuRequested.connect(lambda pos: show_list_menu(self, pos))
 
-        self.refresh_timer = QTimer(self)
-        self.refresh_timer.setInterval(REFRESH_MS)
-        self.refresh_timer.timeout.connect(self._tick)
-        self.poll_timer = QTimer(self)
-        self.poll_timer.timeout.connect(self._poll)
-        self.poll_job = PollJob(self)          # the polls' link requests, off the GUI thread
-        self.status_job = PollJob(self, "scope-status")   # the Single Shot recording's progress
-        self.tune_job = PollJob(self, "scope-tune")       # whether Tune's test move has ended
         self.state_job = PollJob(self, "scope-state")     # the controller's state for the curve list
         self._state_again = False                         # asked while a question was under way: ask after it
-        self.tune_timer = QTimer(self)
-        self.tune_timer.setInterval(100)
-        self.tune_timer.timeout.connect(self._tune_tick)
         self.resize(1200, 800)
         if link_or_bridge is not None:
             self.set_link(link_or_bridge)
@@ -134,7 +103,7 @@ class ScopeWindow(RunControl, QMainWindow):
     def changeEvent(self, event) -> None:  # noqa: N802 - Qt override
         super().changeEvent(event)
         if event.type() == QEvent.Type.ActivationChange and self.isActiveWindow():
-            self.refresh_tune()  # back from another window: the gains there may have changed
+            self.run.refresh_tune()  # back from another window: the gains there may have changed
 
     # --- the link ------------------------------------------------------------------------------------------
     @property
@@ -153,7 +122,7 @@ class ScopeWindow(RunControl, QMainWindow):
             self._link = link_or_bridge
             self._link.subscribe(self._relay.event.emit)  # kernel thread → queued into the GUI thread
             self.list.interface = getattr(link_or_bridge, "kind", "")
-        self.polling.link = self.link
+        self.run.polling.link = self.link
         self._on_status(None)
 
     def _on_event(self, event) -> None:
@@ -163,8 +132,8 @@ class ScopeWindow(RunControl, QMainWindow):
             self._on_status(None)
 
     def _on_samples(self, data) -> None:
-        if self.free_run is not None:
-            self.free_run.feed(data)
+        # the bridge outlives this window: a slot of the window, so Qt drops the connection when the window goes
+        self.run.feed(data)
 
     def _on_status(self, status) -> None:
         """The controller's state in the curve list; `status` None: the IDE's last polled one, else asked on a
@@ -219,20 +188,20 @@ class ScopeWindow(RunControl, QMainWindow):
             tb.addAction(a)
             return a
 
-        self.start_action = act("Start", self.start, shortcut="F9")
-        self.pause_action = act("Pause", self.pause)
-        self.stop_action = act("Stop", self.stop, shortcut="Shift+F9")
-        self.delete_action = act("Delete data", self.delete_data)
+        self.start_action = act("Start", self.run.start, shortcut="F9")
+        self.pause_action = act("Pause", self.run.pause)
+        self.stop_action = act("Stop", self.run.stop, shortcut="Shift+F9")
+        self.delete_action = act("Delete data", self.run.delete_data)
         self.add_action = act("Add curve", self.add_curve_dialog)
         self.load_action = act("Load TESTSETP", self.load_recordings)
-        self.trigger_action = act("Trigger…", self.trigger_dialog)
+        self.trigger_action = act("Trigger…", self.run.trigger_dialog)
         self.poll_box = QSpinBox()
         self.poll_box.setRange(1, 60_000)
         self.poll_box.setSuffix(" ms")
         self.poll_box.setPrefix("Poll ")
         self.poll_box.setValue(self.scope.settings.poll_ms)
         self.poll_box.setToolTip("Poll rate of polled curves (Settings → Oscilloscope, DG 5975-6001)")
-        self.poll_box.valueChanged.connect(self._set_poll_ms)
+        self.poll_box.valueChanged.connect(self.run.set_poll_ms)
         self.poll_box_action = tb.addWidget(self.poll_box)
         self.live_box = QSpinBox()
         self.live_box.setRange(1, 3600)
@@ -240,7 +209,7 @@ class ScopeWindow(RunControl, QMainWindow):
         self.live_box.setSuffix(" s")
         self.live_box.setValue(LIVE_WINDOW_S)
         self.live_box.setToolTip("Time shown while recording (newest at the right); a zoom while recording wins")
-        self.live_box.valueChanged.connect(self._set_live_window)
+        self.live_box.valueChanged.connect(self.run.set_live_window)
         self.live_box_action = tb.addWidget(self.live_box)
         tb.addSeparator()
         self.zoom_action = act("Zoom Reset", self.zoom_reset, shortcut="Ctrl+0")
@@ -268,8 +237,8 @@ class ScopeWindow(RunControl, QMainWindow):
     def set_variant(self, variant: str, *, initial: bool = False) -> None:
         """Switch the variant: Free Run adds "Test Group (Free Run)", Single Shot asks for the recording and adds
         "Test Group (Single Shot)", TESTSETP uploads what it finds (DG 5287-5347)."""
-        if self.running:
-            self.stop()
+        if self.run.running:
+            self.run.stop()
         self.scope.variant = variant
         self.mode_actions[variant].setChecked(True)
         names = {g.name for g in self.scope.groups}
@@ -286,15 +255,13 @@ class ScopeWindow(RunControl, QMainWindow):
         self.live_box_action.setVisible(variant in ("free_run", "polling"))
         self.trigger_action.setVisible(variant == "free_run")
         self.tune_dock.setVisible(variant == "tune")
-        if variant == "tune" and self.link is not None:
-            self.tune = Tune(self.scope, self.link, self.tune_panel.config())
-            with contextlib.suppress(LinkError):
-                self.tune_panel.set_parameters(self.tune.read_parameters())
+        if variant == "tune":
+            self.run.tune_chosen()
         self.list.rebuild()
         if variant == "testsetp" and self.link is not None and not initial or (
                 variant == "testsetp" and initial and self.link is not None and not self.scope.curves):
             self.load_recordings()
-        self._update_title()
+        self.update_title()
         self.redraw()
 
     # --- curves ----------------------------------------------------------------------------------------------
@@ -354,7 +321,7 @@ class ScopeWindow(RunControl, QMainWindow):
 
     def redraw(self) -> None:
         derived.refresh(self.scope)
-        self.chart.refresh(navigation=not self.running)
+        self.chart.refresh(navigation=not self.run.running)
         self.list.sides = (self.chart.left_curve, self.chart.right_curve)
         self.list.update_values(mouse_t=self.mouse_t)
         self._update_readout()
@@ -372,14 +339,10 @@ class ScopeWindow(RunControl, QMainWindow):
                 self.chart.set_cursor(i, self.scope.cursors[i])
         self.zoom_reset()
 
-    def _set_live_window(self, seconds: int) -> None:
-        self.live_window_ms = seconds * 1000.0
-        self._live_width = None   # applied at the next refresh, also during a recording
-
     # --- read-outs -------------------------------------------------------------------------------------------
     def _mouse_time(self, t: float) -> None:
         self.mouse_t = t
-        if not self.running:
+        if not self.run.running:
             self.list.update_values(mouse_t=t)
 
     def _update_readout(self, *_) -> None:
@@ -406,18 +369,11 @@ class ScopeWindow(RunControl, QMainWindow):
             self.chart.left_curve = name
         self.redraw()
 
-    def _update_title(self) -> None:
+    def update_title(self) -> None:
         title = f"Oscilloscope — {TITLES[self.scope.variant]}"
         if self.path is not None:
             title += f" — {Path(self.path).name}"
-        if self.polling.running:
-            title += f" {self.polling.title()}"   # "[<poll ms>ms <load>%]" (DG 5416)
-        elif self.free_run is not None and self.free_run.running and self.free_run.link_dropped is not None:
-            title += f" [PDO: {self.free_run.link_dropped} lost]"   # a link that counts lost values (S31)
-        elif self.single_shot is not None and self.single_shot.running:
-            rec = self._recording_status
-            title += " [recording]" if rec is None else f" [recording {rec.samples}/{rec.limit}]"
-        self.setWindowTitle(title)
+        self.setWindowTitle(title + self.run.title())
 
     def edit_properties(self, name: str, *, dialog: PropertiesDialog | None = None) -> bool:
         """Properties (DG 5070-5236); scaling and ranges take effect at the next Zoom Reset (DG 5197)."""
@@ -443,8 +399,7 @@ class ScopeWindow(RunControl, QMainWindow):
             for side in ("left_curve", "right_curve"):
                 if getattr(self.chart, side) == before:
                     setattr(self.chart, side, after)
-            if self.trigger is not None and self.trigger[0] == before:
-                self.trigger = (after, self.trigger[1])
+            self.run.curve_renamed(before, after)
 
     # --- files ---------------------------------------------------------------------------------------------
     def save_to(self, path: Path | str, *, with_data: bool = True) -> None:
@@ -452,7 +407,7 @@ class ScopeWindow(RunControl, QMainWindow):
         self.path = Path(path)
         if with_data:
             self._saved_mark = self._data_mark()
-        self._update_title()
+        self.update_title()
 
     def save_dialog(self, *, with_data: bool = True) -> bool:
         path, _ = ask_save_name(self, "Save oscilloscope", self.path or "", "Oscilloscope files (*.zbo)")
@@ -527,7 +482,7 @@ class ScopeWindow(RunControl, QMainWindow):
         if not self.confirm_unsaved():
             event.ignore()
             return
-        self._stop_acquisition()
+        self.run.stop_acquisition()
         if self._link is not None:
             self._link.unsubscribe(self._relay.event.emit)
         super().closeEvent(event)
