@@ -5,8 +5,8 @@ import pytest
 
 from motiontool.comms.protocol import Request
 from motiontool.controller.apc_service import ApcService
-from motiontool.controller.sampling import BoundedStore, Sampler
 from motiontool.controller.service import ControllerService
+from motiontool.sampling import BoundedStore, Sampler
 
 
 def test_a_stream_samples_multiples_of_its_interval_and_a_recording_counts_from_its_start():

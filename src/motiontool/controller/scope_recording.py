@@ -12,10 +12,10 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from functools import partial
 
-from motiontool.controller.sampling import BoundedStore, Sampler
 from motiontool.kernel.errors import ControllerError
 from motiontool.kernel.recorder import DYNAMIC_MEMORY, MAX_INDICES
 from motiontool.kernel.vm import ArrayRef
+from motiontool.sampling import BoundedStore, Sampler
 
 
 @dataclass

@@ -94,7 +94,7 @@ class Controller:
         self.io = iomod.IO()
         self.axis = Axis(plant)
         self.interrupts = Interrupts()
-        self.recorder = Recorder()
+        self.recorder = Recorder(self._read_sysvar_for_recording)
         self.vm: VM | None = None
         self.program_state = "idle"    # idle | running | break | ended | error
         self.events: deque[Event] = deque(maxlen=RECENT_EVENTS)

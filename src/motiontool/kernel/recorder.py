@@ -1,14 +1,16 @@
 """TESTSETP recording (DG 7121-7135, 4668-4700): SYSVAR values sampled every n ms into an array or
-dynamic memory, one time or cyclic. Samples are stored interleaved: index 1, 2, …, k of sample 1, then
-of sample 2 … (docs/decisions.md)."""
+dynamic memory, one time or cyclic, by the common sampler (motiontool/sampling.py, decision S34). Samples are
+stored interleaved: index 1, 2, …, k of sample 1, then of sample 2 … (decision K4)."""
 
 from __future__ import annotations
 
-from collections import deque
-from dataclasses import dataclass, field
+from collections.abc import Callable
+from dataclasses import dataclass
+from functools import partial
 
 from motiontool.kernel.errors import ControllerError
 from motiontool.kernel.vm import ArrayRef
+from motiontool.sampling import BoundedStore, Sampler
 
 MAX_INDICES = 20            # DG 11858-11862: error 195
 DYNAMIC_MEMORY = 200_000    # values the simulator's dynamic memory holds (error 194 beyond)
@@ -16,24 +18,38 @@ DYNAMIC_MEMORY = 200_000    # values the simulator's dynamic memory holds (error
 
 @dataclass
 class Recording:
-    interval_ms: int
+    """One TESTSTART: the common sampler (motiontool/sampling.py) reading the indices into a bounded store."""
+
     indices: list[int]
     array: ArrayRef | None          # None = dynamic memory
-    cyclic: bool
-    limit: int                      # samples to take
     start_ms: int
-    samples: deque = field(default_factory=deque)  # bounded by `limit`: cyclic recordings drop the oldest
-    running: bool = True
-    countdown: int = 0
-    taken: int = 0
+    sampler: Sampler                # from the first tick after TESTSTART, every interval
+    store: BoundedStore             # `limit` sets: cyclic recordings drop the oldest
 
     @property
     def name(self) -> str:
         return self.array.name if self.array is not None else "DYNMEM"
 
+    @property
+    def interval_ms(self) -> int:
+        return self.sampler.interval_ms
+
+    @property
+    def running(self) -> bool:
+        return self.sampler.running
+
+    @property
+    def samples(self):
+        return self.store.samples
+
+    @property
+    def taken(self) -> int:
+        return self.store.taken
+
 
 class Recorder:
-    def __init__(self) -> None:
+    def __init__(self, read: Callable[[int], int]) -> None:
+        self.read = read                # SYSVAR index → value, at the moment the kernel's tick samples
         self.interval_ms = 1
         self.indices: list[int] = []
         self.array: ArrayRef | None = None
@@ -69,34 +85,24 @@ class Recorder:
         if self.array is None and self.active is not None and self.active.array is None:
             raise ControllerError(194, "TESTSTART repeated while recording into dynamic memory")
         limit = n if n > 0 else capacity
-        self.active = Recording(self.interval_ms, list(self.indices), self.array, self.cyclic, limit, now_ms,
-                                deque(maxlen=limit))
+        store = BoundedStore(limit, self.cyclic, self.array, integers=True)  # read_sysvar gives ints
+        sampler = Sampler([partial(self.read, i) for i in self.indices], self.interval_ms, store, aligned=False)
+        self.active = Recording(list(self.indices), self.array, now_ms, sampler, store)
         self.recordings.append(self.active)
 
     def stop(self, method: int) -> None:
         if method != 0:
             raise ControllerError(183, f"TESTSTOP {method}: only 0 (stop immediately) is known")
         if self.active is not None:
-            self.active.running = False
+            self.active.sampler.running = False
             self.active = None
 
-    def sample(self, read) -> None:
-        """Called every tick; read(index) gives a SYSVAR value."""
+    def sample(self, now_ms: int) -> None:
+        """Called every tick while a recording is active (the kernel tests `active` itself, so an idle recorder
+        costs nothing)."""
         rec = self.active
         if rec is None:
             return
-        if rec.countdown > 0:
-            rec.countdown -= 1
-            return
-        rec.countdown = rec.interval_ms - 1
-        row = [read(i) for i in rec.indices]
-        if len(rec.samples) >= rec.limit and not rec.cyclic:
-            rec.running = False
+        rec.sampler.tick(now_ms)
+        if not rec.sampler.running:  # full: stop when full (DG 5308)
             self.active = None
-            return
-        rec.samples.append(row)
-        if rec.array is not None:  # cyclic recordings overwrite the oldest sample in the array
-            k = len(row)
-            slot = (rec.taken % rec.limit) * k
-            rec.array.data[slot:slot + k] = row
-        rec.taken += 1

@@ -160,7 +160,7 @@ def controller_tick(ctl) -> None:
     except ControllerError as exc:
         ctl.raise_error(exc)
     if ctl.recorder.active is not None:
-        ctl.recorder.sample(ctl._read_sysvar_for_recording)
+        ctl.recorder.sample(time_ms)
     can = ctl.can
     if (can.inbox or can.busy or can.heartbeat_ms or can.pdo.active or can.sdo.channels
             or (can.own_bus and (can.bus.pending or can.bus.injected))):  # CanPort.tick's idle test inline
