@@ -1,70 +1,13 @@
-"""Settings → Compiler (DG 3057-3085, ide-spec 1.45): Max number of variables (500; an array counts as one),
-Max executable size (65000 bytes), Stack size (200), Enable Preprocessor, Generate Cross Reference. Kept in the
-settings file. The IDE applies them after the compiler: a program over a limit gets an error at its first
-line, a preprocessor directive with the preprocessor off an error at its line; the stack size travels with
-the download; without the cross reference Syntax Check writes no .ad$ and the debugger and the Watch explain
-that they need it (DG 3083-3085)."""
+"""Settings → Compiler's dialog (DG 3057-3085, ide-spec 1.45); the settings, kept in the settings file, and the
+checks the IDE applies after the compiler are session/compiling.py's."""
 
 from __future__ import annotations
 
-import re
-from dataclasses import dataclass, fields
-
 from PySide6.QtWidgets import QCheckBox, QDialog, QDialogButtonBox, QFormLayout, QLabel, QSpinBox
 
-from motiontool.language.diagnostics import Diagnostic, Location
+from motiontool.session.compiling import NO_XREF, CompilerSettings
 
-_DIRECTIVE = re.compile(r"^\s*#\s*(define|undef|if|ifdef|ifndef|elif|else|endif|pragma)\b")
-NO_XREF = ("Settings → Compiler → Generate Cross Reference is off: the debugger and the Watch need the cross "
-           "reference (DG 3083-3085)")
-
-
-@dataclass
-class CompilerSettings:
-    max_variables: int = 500
-    max_executable: int = 65000
-    stack_size: int = 200
-    preprocessor: bool = True
-    cross_reference: bool = True
-
-    @classmethod
-    def load(cls, settings) -> CompilerSettings:
-        defaults = cls()
-        values = {}
-        for f in fields(cls):
-            default = getattr(defaults, f.name)
-            try:
-                values[f.name] = settings.value(f"compiler/{f.name}", default, type=type(default))
-            except (TypeError, ValueError):  # a damaged settings file: the default
-                values[f.name] = default
-        return cls(**values)
-
-    def save(self, settings) -> None:
-        for f in fields(self):
-            settings.setValue(f"compiler/{f.name}", getattr(self, f.name))
-
-
-def check(settings: CompilerSettings, result, source: str, label: str) -> list[Diagnostic]:
-    """The IDE's checks of the compiler options on a compiled program (`result` a CompileResult)."""
-    found = []
-    if not settings.preprocessor:
-        for number, line in enumerate(source.splitlines(), 1):
-            m = _DIRECTIVE.match(line)
-            if m:
-                found.append(Diagnostic("error", f"#{m.group(1)}: the preprocessor is switched off (Settings → "
-                                                 "Compiler → Enable Preprocessor)", Location(label, number, 1)))
-    image = result.image
-    if image is not None:
-        variables = sum(1 for v in image.globals if not v.name.startswith("$")) + len(image.arrays) + len(image.dims)
-        if variables > settings.max_variables:
-            found.append(Diagnostic("error", f"the program has {variables} variables (arrays count as one); "
-                                             f"Settings → Compiler allows {settings.max_variables}",
-                                    Location(label, 1, 1)))
-        size = len(image.to_bytes())
-        if size > settings.max_executable:
-            found.append(Diagnostic("error", f"the program is {size} bytes; Settings → Compiler allows "
-                                             f"{settings.max_executable} (Max executable size)", Location(label, 1, 1)))
-    return found
+__all__ = ["NO_XREF", "CompilerSettings", "CompilerSettingsDialog", "edit_compiler_settings"]
 
 
 class CompilerSettingsDialog(QDialog):

@@ -5,27 +5,19 @@ What runs on the controller (Execute, Break, Continue, Execute now) is the windo
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
 
 from motiontool.aposs.driver import CompileResult, compile_source
-from motiontool.dpl.driver import CheckResult, check_source
+from motiontool.dpl.driver import CheckResult
 from motiontool.dpl.image import DplImage
 from motiontool.fileio import atomic_write_bytes, write_error
+from motiontool.session.compiling import CheckOutcome, CompilerSettings, compile_program
 from motiontool.session.controllers import APC_SIM, InterfaceConfig
 from motiontool.session.program import Program, ProgramCommands
-from motiontool.ui.compiler_settings import CompilerSettings
-from motiontool.ui.compiler_settings import check as compiler_checks
 from motiontool.ui.link_jobs import waiting
 
 DEFAULT_CONTROLLER = ("embedded", 1)
 MAX_NOTED_ERRORS = 1000  # a controller keeps its last 50; this bounds a window that runs for days
-
-
-@dataclass
-class CheckOutcome:
-    result: CompileResult | CheckResult    # CheckResult for a DPL program (the APC's language)
-    first_error: tuple[int, int] | None
 
 
 class Development:
@@ -96,15 +88,10 @@ class Development:
             return None
         path = editor.property("path") or None
         name = Path(path).name if path else (editor.property("sample") or "Untitled.m")
-        if editor.language == "dpl":
-            result = check_source(editor.toPlainText(), path or name)
-        else:
-            result = compile_source(editor.toPlainText(), path or name, debug=debug, name=Path(name).stem)
-            result.diagnostics += compiler_checks(self.compiler_settings(), result, editor.toPlainText(),
-                                                  path or name)
-        self.w.show_diagnostics(editor, result)
-        first = next(((d.loc.line, d.loc.col) for d in result.errors), None)
-        return CheckOutcome(result, first)
+        outcome = compile_program(editor.toPlainText(), path, name, dpl=editor.language == "dpl", debug=debug,
+                                  settings=self.compiler_settings())
+        self.w.show_diagnostics(editor, outcome.result)
+        return outcome
 
     def compiler_settings(self) -> CompilerSettings:
         return CompilerSettings.load(self.w.settings)
