@@ -13,11 +13,9 @@
 
 from __future__ import annotations
 
-from functools import partial
-
 from PySide6.QtWidgets import QToolButton
 
-from motiontool.comms.protocol import LinkError
+from motiontool.session.interface import InterfaceCommands
 from motiontool.session.session import Session, SessionEvent
 from motiontool.ui.link_jobs import waiting
 
@@ -30,6 +28,7 @@ class Connection:
         self.registry = window.controllers
         self.session = Session(self.registry)
         self.session.listeners.append(self._session_event)
+        self.interface = InterfaceCommands(self.session, window.messages.ide, self._run)
         self.reconnect_button = QToolButton(window)
         self.reconnect_button.setText("Reconnect")
         self.reconnect_button.setToolTip("Connect again to the same controller on the same interface")
@@ -102,89 +101,21 @@ class Connection:
     def window_closed(self) -> None:
         self.session.close()
 
-    # --- every controller of the interface -------------------------------------------------------------------
-    def _interface_links(self, *, all_in_range: bool):
-        """(id, link) of this window's interface: every controller found in its scan range, or the open ones."""
-        if not self.connect_default():
-            return []
-        iface = self.registry.interfaces.get(self.interface_key)
-        # a simulated controller exists only once something opened it: the open ones are all there are
-        ids = iface.found if all_in_range and iface.config.kind != "sim" else sorted(iface.links)
-        found = []
-        for cid in ids:
-            try:
-                found.append((cid, waiting(self.w, f"Controller {cid}: connecting …",
-                                           partial(self.registry.link, cid, interface=self.interface_key))))
-            except (LinkError, ValueError) as exc:
-                self.w.messages.ide(f"Controller {cid}: {exc}")
-        return found
-
-    def _each(self, action, doing: str, *, all_in_range: bool) -> list[int]:
-        done = []
-        for cid, link in self._interface_links(all_in_range=all_in_range):
-            try:
-                if waiting(self.w, f"Controller {cid}: {doing} …", partial(action, link)):
-                    done.append(cid)
-            except LinkError as exc:
-                self.w.messages.ide(f"Controller {cid}: {exc}")
-        return done
-
+    # --- every controller of the interface (session/interface.py) --------------------------------------------
     def break_all(self) -> list[int]:
-        """Break all (DG 2504-2514)."""
-        def stop(link) -> bool:
-            if link.status().program_state != "running":
-                return False
-            link.break_program()
-            return True
-        done = self._each(stop, "Break all", all_in_range=True)
-        self.w.messages.ide(f"Break all: stopped the programs of controllers {_ids(done)}" if done
-                            else "Break all: no program was running")
-        return done
+        return self.interface.break_all()
 
     def start_all(self) -> list[int]:
-        """Start all (DG 2516-2518): Execute on every connected controller of the interface."""
-        def start(link) -> bool:
-            if link.status().program_state == "running":
-                return False
-            link.start()
-            return True
-        done = self._each(start, "Start all", all_in_range=False)
-        self.w.messages.ide(f"Start all: started controllers {_ids(done)}" if done else "Start all: nothing started")
-        return done
+        return self.interface.start_all()
 
     def delete_programs_all(self) -> list[int]:
-        """Delete Programs all (DG 2528-2534): the saved programs of every controller of the interface."""
-        def delete(link) -> bool:
-            programs = link.list_programs()
-            for program in programs:
-                link.delete_program(program.number)
-            return bool(programs)
-        done = self._each(delete, "Delete Programs all", all_in_range=True)
-        self.w.messages.ide(f"Delete Programs all: deleted the programs of controllers {_ids(done)}" if done
-                            else "Delete Programs all: no saved programs")
-        return done
+        return self.interface.delete_programs_all()
 
     def close_interface(self) -> None:
-        """Close Interface (DG 2548-2550): every controller of this window's interface, after saying which."""
-        key = self.interface_key
-        iface = self.registry.interfaces.get(key or "")
-        if iface is None:
-            self.w.messages.ide("Close Interface: no interface is open in this window")
-            return
-        self.w.messages.ide(f"Close Interface: closing the connections to controllers {_ids(sorted(iface.links))} "
-                            f"on {iface.config.description}")
-        self.registry.close(interface=key)
+        self.interface.close_interface()
 
     def close_all(self) -> None:
-        """Close All Interfaces (DG 2552): every controller on every interface, in every window."""
-        closed = self.registry.close()
-        names = ", ".join(f"{cid} ({key})" for key, cid in closed) or "none"
-        self.w.messages.ide(f"Close All Interfaces: closed the connections to controllers {names}")
-
-
-def _ids(ids: list[int]) -> str:
-    return ", ".join(str(i) for i in ids) or "none"
-
+        self.interface.close_all()
 
 
 def new_registry(settings, realtime_factor: float):
