@@ -9,7 +9,7 @@ import threading
 
 import pytest
 from PySide6.QtCore import Qt, QTimer
-from PySide6.QtWidgets import QToolBar
+from PySide6.QtWidgets import QToolBar, QToolButton
 
 from tests.modal import answering
 from tests.ui.gui_thread_check import HOLD, RECORD, checking, click, connect, program, said
@@ -116,3 +116,27 @@ def test_programs_start_clicked_again_while_it_starts_runs_once(checked, qtbot, 
     qtbot.wait(3 * PACE_MS)
     assert held[1][0] == 2
     assert downloads("start") == 1, RECORD.taken()
+
+
+def test_scope_start_clicked_again_while_it_starts_runs_once(checked, qtbot):
+    """The oscilloscope's Start (DG 4620-4627) waits for the controller's answer to the stream request like the
+    IDE's commands (scope/ui/poll_job.wait is link_jobs.waiting since motiontool.qtjobs): Start clicked again
+    meanwhile is dropped. On 9b7b607 (the scope's wait without the guard) the stream was asked 3 times."""
+    connect(qtbot, checked)
+    checked.actions_by_text["Oscilloscope"].trigger()
+    scope = checked._scopes[-1]
+    scope.ask = False
+    scope.add_signal_curve("APOS", group="Test Group (Free Run)")   # set-up: a curve to record
+    start = next(b for b in scope.findChildren(QToolButton) if b.defaultAction() is scope.start_action)
+    RECORD.clear()
+    through, presses = held_download(qtbot, lambda: click(qtbot, start), op="stream")
+    try:
+        click(qtbot, start)
+    finally:
+        through.set()
+    qtbot.waitUntil(lambda: scope.run.running, timeout=20_000)
+    qtbot.wait(3 * PACE_MS)        # a click that was kept would run now
+    assert presses[0] == 2
+    assert downloads("stream") == 1, RECORD.taken()
+    scope.stop_action.trigger()
+    scope.close()
