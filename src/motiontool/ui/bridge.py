@@ -1,16 +1,23 @@
 """Qt side of a comms Link: link events arrive on the kernel thread (or a wire link's event poller); here they
 become Qt signals that are delivered in the GUI thread (queued), and the controller status is polled for the status
-bar on a worker thread (ui/status_worker.py), so the window never waits for a slow line to answer it."""
+bar on a worker thread (ui/status_worker.py), so the window never waits for a slow line to answer it.
+
+The bridge is also what a tool window (oscilloscope, CAM editor, Array Editor) is given of its APOSS window's
+session: the link, the controller ID, its signals, `waiting`, `connect_default` and the window's `prompts` - not
+the main window (issue 27 item 5)."""
 
 from __future__ import annotations
 
 import threading
 from collections import deque
+from collections.abc import Callable
 
 from PySide6.QtCore import QObject, Signal
 
 from motiontool.comms.link import Link
 from motiontool.comms.protocol import LinkEvent, Status
+from motiontool.session.prompts import Prompts
+from motiontool.session.session import Session
 from motiontool.ui.link_jobs import waiting
 from motiontool.ui.status_worker import StatusWorker
 
@@ -42,10 +49,21 @@ class LinkBridge(QObject):
         self.status_worker.polled.connect(self._polled)
         self.status_worker.failed.connect(self._lost)
         self.last_status: Status | None = None
+        self.session: Session | None = None                   # the window's (set by ui/connection.py)
+        self.prompts: Prompts | None = None
+        self._connect: Callable[[], bool] | None = None
 
     @property
     def connected(self) -> bool:
         return self.link is not None
+
+    def serve(self, session: Session, connect: Callable[[], bool], prompts: Prompts) -> None:
+        """Be the Qt face of the window's session: `connect` connects it as the window's commands do."""
+        self.session, self._connect, self.prompts = session, connect, prompts
+
+    def connect_default(self) -> bool:
+        """A tool window that needs a controller connects its APOSS window first (DG 2054-2062, 5265-5273)."""
+        return self.connected or (self._connect is not None and self._connect())
 
     def attach(self, link: Link, description: str, *, controller_id: int = 1) -> None:
         self.detach(close=False)

@@ -9,6 +9,8 @@ from pathlib import Path
 from PySide6.QtCore import Qt
 from PySide6.QtWidgets import QFileDialog, QMessageBox, QWidget
 
+from motiontool.ui import tool_windows
+
 OPEN_FILTER = ("motiontool files (*.m *.dpl *.zbc *.cnf *.zbo *.zba *.txt);;APOSS programs (*.m);;"
                "DPL programs (*.dpl);;CAM configuration (*.zbc *.cnf);;Oscilloscope files (*.zbo);;"
                "Array definition (*.zba);;Old Testrun files (*.txt);;All files (*)")
@@ -71,9 +73,7 @@ def show_location(w, file: str, line: int, col: int, controller_id: int | None) 
 
 
 def _cam(w, path: Path) -> QWidget | None:
-    from motiontool.cameditor.ui import open_cam_editor
-
-    editor = open_cam_editor(w)
+    editor = tool_windows.cam_editor(w)
     if editor._discard_ok():
         editor.open_file(path)  # a file it cannot read: its message line names the place
     return editor
@@ -84,14 +84,12 @@ def _scope(w, path: Path) -> QWidget:
 
     window = open_scope_file(path, parent=w)
     window.setWindowFlag(Qt.WindowType.Window, True)
-    w._scopes = [s for s in getattr(w, "_scopes", []) if s.isVisible()] + [window]
+    tool_windows.keep_scope(w, window)
     window.show()
     return window
 
 
 def _arrays(w, path: Path) -> QWidget:
-    from motiontool.arrayeditor.ui.editor import open_array_editor
-
-    editor = open_array_editor(w)
+    editor = tool_windows.array_editor(w)
     editor.open_file(path=path)  # a file it cannot read: it says why
     return editor

@@ -10,6 +10,7 @@ from PySide6.QtWidgets import QFileDialog, QMenu
 
 from motiontool.resources import resources_path
 from motiontool.ui import controller_menu as cm
+from motiontool.ui import tool_windows
 
 
 def _samples(pattern: str = "*.m") -> list[str]:
@@ -207,15 +208,11 @@ def _command_list(w) -> None:
 
 
 def _cam_editor(w) -> None:
-    from motiontool.cameditor.ui import open_cam_editor
-
-    open_cam_editor(w)
+    tool_windows.cam_editor(w)
 
 
 def _scope(w) -> None:
-    from motiontool.scope.ui import open_scope
-
-    w._scopes = [s for s in getattr(w, "_scopes", []) if s.isVisible()] + [open_scope(w)]
+    tool_windows.oscilloscope(w)
 
 
 def _io_panel(w) -> None:
@@ -231,9 +228,7 @@ def _sweep_results(w) -> None:
 
 
 def _array_editor(w) -> None:
-    from motiontool.arrayeditor.ui.editor import open_array_editor
-
-    open_array_editor(w)
+    tool_windows.array_editor(w)
 
 
 def _select_controller(w) -> None:

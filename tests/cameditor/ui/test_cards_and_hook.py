@@ -1,10 +1,10 @@
-"""Curve Data "Set" dialogs, card errors, and the Tools → CAM-Editor entry point open_cam_editor."""
+"""Curve Data "Set" dialogs, card errors, and the Tools → CAM-Editor entry point (given the window's session as
+its bridge, ui/tool_windows.py)."""
 
 from __future__ import annotations
 
 from PySide6.QtCore import QSettings
 
-from motiontool.cameditor.ui import open_cam_editor
 from motiontool.formats.zbc import ConfigFile
 from tests.camcurve.conftest import stamping_curve
 from tests.cameditor.ui.helpers import field, ok
@@ -61,8 +61,10 @@ def test_open_cam_editor_uses_the_main_windows_link(qtbot, tmp_path):
     qtbot.addWidget(w)
     try:
         assert w.development.connect_default()
-        editor = open_cam_editor(w)
-        assert open_cam_editor(w) is editor  # one editor per main window
+        w.actions_by_text["CAM-Editor"].trigger()
+        editor = w.cam_editor
+        w.actions_by_text["CAM-Editor"].trigger()
+        assert w.cam_editor is editor  # one editor per main window
         editor.confirm = False
         assert editor.link_provider() is w.bridge.link
         assert editor.read_from_controller()

@@ -292,7 +292,7 @@ def test_open_scope_from_the_main_window(qtbot, tmp_path):
     main = MainWindow(settings=settings, realtime_factor=20.0)
     qtbot.addWidget(main)
     try:
-        scope = open_scope(main)
+        scope = open_scope(main.bridge, parent=main, settings=main.settings)
         assert scope.link is main.bridge.link is not None
         scope.add_signal_curve("4119", group="Test Group (Free Run)")
         click(qtbot, scope, scope.start_action)

@@ -343,15 +343,9 @@ class ArrayEditor(QMainWindow):
         return True
 
 
-def open_array_editor(window) -> ArrayEditor:
-    """Tools → Array Editor: opens in Expert mode; the window's controller is read at once (ide-spec 5.5)."""
-    editor = getattr(window, "_array_editor", None)
-    if editor is None:
-        editor = ArrayEditor(window.bridge, parent=window)
-        editor.setWindowFlag(Qt.WindowType.Window, True)
-        window._array_editor = editor
-    editor.show()
-    editor.raise_()
-    if window.development.connect_default():
-        editor.read_controller()
+def open_array_editor(bridge, *, parent=None) -> ArrayEditor:
+    """Tools → Array Editor on an APOSS window's session (`bridge`, ui/bridge.py): opens in Expert mode; the
+    controller is read at once (ide-spec 5.5). One per APOSS window is ui/tool_windows.py's rule."""
+    editor = ArrayEditor(bridge, parent=parent)
+    editor.setWindowFlag(Qt.WindowType.Window, True)
     return editor
