@@ -82,7 +82,7 @@ def test_cam_editor_save_and_export_report_their_failure(window, qtbot, tmp_path
     assert cli.main(["cam", "build", "--name", "stamping", "--point", "0,0", "--point", "1500,1200,T", "--point",
                      "2500,2400,T", "--point", "4000,3600", "-o", str(stamping)]) == 0
     assert cam.open_file(stamping)  # set-up; the saves below go through the toolbar
-    cam.edit("Stop position", lambda c: c.__class__(**{**c.__dict__, "slave_stop_position": 5}))
+    cam.edits.edit("Stop position", lambda c: c.__class__(**{**c.__dict__, "slave_stop_position": 5}))
     assert cam.modified
     with Answers(qtbot, ChooseFile(str(folder / "c.zbc"), then=lambda: shutil.rmtree(folder)), Button.Ok) as answers:
         cam.actions_by_name["save_as"].trigger()

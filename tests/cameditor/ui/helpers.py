@@ -153,7 +153,7 @@ def double_click(qtbot, editor, pos: QPoint) -> None:
 
 
 def menu_action(editor, text: str):
-    menu = editor.context_menu
+    menu = editor.edits.context_menu
     assert menu is not None
     for action in menu.actions():
         if action.text() == text:

@@ -52,7 +52,7 @@ def test_popup_has_a_motion_law_submenu(qtbot, editor, tmp_path):
     editor.zoom_reset()
     qtbot.wait(50)
     click(qtbot, editor, to_pixel(editor, 1800, 1000), R)
-    menu = editor.context_menu
+    menu = editor.edits.context_menu
     sub = next(a.menu() for a in menu.actions() if a.text() == "Motion law (VDI 2143)")
     names = [a.text() for a in sub.actions()]
     assert names == ["3-4-5 polynomial", "Modified sine", "Cycloid", "Modified trapezoid", "Simple harmonic"]
@@ -64,7 +64,7 @@ def test_popup_has_a_motion_law_submenu(qtbot, editor, tmp_path):
     assert read_config(tmp_path / "laws.zbc").curve("drdr").fix_points[2].type == "MTRAP"
     qtbot.wait(50)
     click(qtbot, editor, to_pixel(editor, 0, 0), R)  # the first point ends no segment: refused with the reason
-    sub = next(a.menu() for a in editor.context_menu.actions() if a.text() == "Motion law (VDI 2143)")
+    sub = next(a.menu() for a in editor.edits.context_menu.actions() if a.text() == "Motion law (VDI 2143)")
     sub.actions()[0].trigger()
     assert editor.curve().fix_points[0].type == "C" and "first point" in editor.message_line.text()
 

@@ -118,7 +118,7 @@ def test_s6_new_read_from_controller_add_export_import(qtbot, editor, link, tmp_
     dat = tmp_path / "c.dat"
     assert editor.export_dat(dat)
     assert dat.read_text().count("\n") == 6 + len(encode(marker_curve()))
-    editor.edit("Add points", lambda c: c.__class__(**{**c.__dict__, "slave_stop_position": 5}))
+    editor.edits.edit("Add points", lambda c: c.__class__(**{**c.__dict__, "slave_stop_position": 5}))
     assert editor.curve() != marker_curve()
     assert editor.import_dat(dat)
     assert editor.curve() == marker_curve()

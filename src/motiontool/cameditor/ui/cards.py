@@ -25,7 +25,8 @@ from PySide6.QtWidgets import (
 
 from motiontool.camcurve.model import MAX_NAME_LENGTH, Curve, CurveType
 from motiontool.camcurve.spline import CurveInfo
-from motiontool.cameditor.limits import SlaveLimits, percent
+from motiontool.cameditor.limits import SlaveLimits, marker_detection, parameter, percent, slave_limits
+from motiontool.cameditor.ui.diagram import Overlay
 from motiontool.paramdb import database
 
 CURVE_TYPE_LABELS = ("Average start and end gradients", "Set end gradient to start gradient",
@@ -306,3 +307,23 @@ class DisplayOptions(QWidget):
 
     def __getitem__(self, key: str) -> bool:
         return self.boxes[key].isChecked()
+
+    def overlay(self, curve: Curve | None, parameters: dict[str, int | float], selected_pair: int | None) -> Overlay:
+        """The overlay these options ask for, with ``curve``'s limits and marker positions under ``parameters``."""
+        ov = Overlay(**{k: self[k] for k in ("velocity", "velocity_limit", "acceleration", "acceleration_limit",
+                                             "jerk", "slave_stop", "start_stop", "engage", "disengage",
+                                             "master_marker", "slave_marker", "correction")})
+        ov.selected_pair = selected_pair
+        if curve is not None:
+            limits = slave_limits(curve, parameters)
+            ov.velocity_limit_value, ov.acceleration_limit_value = limits.velocity, limits.acceleration
+            p = parameters
+            ov.master_marker_at = marker_detection(curve.master_marker_pos, parameter(p, "33-17"), curve.master_length)
+            ov.master_tolerance = parameter(p, "33-21")
+            # the slave marker is a slave position; reduced over the slave length when the curve has one
+            s_len = abs(curve.slave_length)
+            distance = parameter(p, "33-18")
+            ov.slave_marker_at = (marker_detection(curve.slave_marker_pos, distance, s_len) if s_len
+                                  else curve.slave_marker_pos - distance)
+            ov.slave_tolerance = parameter(p, "33-22")
+        return ov

@@ -90,7 +90,7 @@ class TraceOverlay:
                                                    master_scale=dialog.master_scale.value(),
                                                    slave_scale=dialog.slave_scale.value(),
                                                    slave_offset=dialog.slave_offset.value()))
-        self.editor._open(dialog)
+        self.editor.show_dialog(dialog)
         return dialog
 
     def apply(self, table: TraceTable, master: str, slave: str, *, master_scale: float = 1.0, slave_scale: float = 1.0,

@@ -8,7 +8,7 @@ from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
 
-from PySide6.QtCore import QEvent, Qt, QTimer
+from PySide6.QtCore import QEvent, Qt
 from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import (
     QComboBox,
@@ -26,8 +26,10 @@ from PySide6.QtWidgets import (
 
 from motiontool.camcurve.layout import element_count
 from motiontool.camcurve.model import Curve, CurveError
+from motiontool.camcurve.spline import curve_info
 from motiontool.cameditor import editing
 from motiontool.cameditor.history import History
+from motiontool.cameditor.limits import slave_limits
 from motiontool.cameditor.transfer import download_config, upload_config
 from motiontool.cameditor.ui.apc_panel import ApcPanel
 from motiontool.cameditor.ui.cards import (
@@ -38,8 +40,8 @@ from motiontool.cameditor.ui.cards import (
     sync_marker_card,
     synchronization_card,
 )
-from motiontool.cameditor.ui.diagram import CurveDiagram
-from motiontool.cameditor.ui.edits import EditsMixin
+from motiontool.cameditor.ui.diagram import CurveDiagram, Overlay
+from motiontool.cameditor.ui.edits import CurveEdits
 from motiontool.cameditor.ui.tables import FixPointTable, StartStopTable
 from motiontool.cameditor.ui.trace import TraceOverlay
 from motiontool.comms.link import Link
@@ -64,7 +66,7 @@ class Slot:
         return f"{number} {self.curve.name if self.curve else 'Array'}"  # "Array" for non-curves [DG L3563]
 
 
-class CamEditor(EditsMixin, QMainWindow):
+class CamEditor(QMainWindow):
     def __init__(self, link_provider: Callable[[], Link | None] | None = None, parent=None,
                  controller: Callable[[], int | None] | None = None, wait=None) -> None:
         super().__init__(parent)
@@ -80,14 +82,7 @@ class CamEditor(EditsMixin, QMainWindow):
         self.path: Path | None = None
         self.modified = False
         self.dialog = None  # the open non-blocking dialog, if any
-        self.context_menu = None
-        self._drag_start: Curve | None = None
-        self._drag_overlay = None  # ((master length, slave length), Overlay) during a drag
-        self._follow: tuple[Curve, int, bool] | None = None  # a drag's state the table / Curve Info lag behind
-        self._follow_next = 0.0  # monotonic time of their next update
-        self._follow_timer = QTimer(self)
-        self._follow_timer.setSingleShot(True)
-        self._follow_timer.timeout.connect(self.show_follow)
+        self.edits = CurveEdits(self)   # undo/redo, mouse, table and card edits
         self.resize(1400, 900)
         self._build_panes()
         self.trace_overlay = TraceOverlay(self)  # measured trace over the curve (decision C14)
@@ -163,10 +158,10 @@ class CamEditor(EditsMixin, QMainWindow):
             "zoom_in": self._action("Zoom +", lambda: self.zoom(0.5), tip="Zoom In ×2 (central part)"),
             "zoom_out": self._action("Zoom −", lambda: self.zoom(2.0), tip="Zoom Out ×2"),
             "reset_splitters": self._action("Splitters", self.reset_splitters, tip="Reset splitters"),
-            "undo": self._action("Undo", self.undo, icon=sp.SP_ArrowBack, shortcut="Ctrl+Z"),
-            "redo": self._action("Redo", self.redo, icon=sp.SP_ArrowForward, shortcut="Ctrl+Y"),
-            "snap_all": self._action("Snap all", self.snap_all, tip="Snap all Fix points and Start Stop points on "
-                                                                    "the interpolation grid"),
+            "undo": self._action("Undo", self.edits.undo, icon=sp.SP_ArrowBack, shortcut="Ctrl+Z"),
+            "redo": self._action("Redo", self.edits.redo, icon=sp.SP_ArrowForward, shortcut="Ctrl+Y"),
+            "snap_all": self._action("Snap all", self.edits.snap_all, tip="Snap all Fix points and Start Stop points "
+                                                                          "on the interpolation grid"),
             # arrows as the IDE's download: down to the controller (Write), up from it (Read)
             "read": self._action("Read from controller", self.read_from_controller, icon=sp.SP_ArrowUp,
                                  tip="Read from controller: replaces all parameters and arrays"),
@@ -228,32 +223,61 @@ class CamEditor(EditsMixin, QMainWindow):
 
     def _connect(self) -> None:
         self.array_combo.activated.connect(self.select_array)
-        box = self.diagram.box
-        box.point_hovered.connect(self._hovered)
-        box.point_dragged.connect(self._dragged)
-        box.double_clicked.connect(self._double_clicked)
-        box.context_requested.connect(self._context_menu)
+        box, edits = self.diagram.box, self.edits
+        box.point_hovered.connect(edits.hovered)
+        box.point_dragged.connect(edits.dragged)
+        box.double_clicked.connect(edits.double_clicked)
+        box.context_requested.connect(edits.menu_requested)
         box.user_zoomed.connect(lambda: self.options.boxes["auto_scale"].setChecked(False))
-        self.options.changed.connect(self._options_changed)
-        self.cards.currentChanged.connect(lambda _i: self.show_follow())
-        self.fix_table.model.edit_requested.connect(self._fix_point_edited, Qt.ConnectionType.QueuedConnection)
-        self.fix_table.view.delete_requested.connect(lambda row: self.edit("Delete point", editing.delete_point, row))
-        self.fix_table.add_clicked.connect(self.add_points_dialog)
-        self.pair_table.add_clicked.connect(self.add_pairs_dialog)
-        self.pair_table.edit_requested.connect(self.edit_pair_dialog)
-        self.pair_table.view.delete_requested.connect(lambda row: self.edit("Delete pair", editing.delete_pair,
-                                                                             row + 1))
-        self.pair_table.pair_selected.connect(lambda _k: self._redraw())
-        self.curve_data.field_edited.connect(self._curve_field_edited)
-        self.curve_data.set_length_clicked.connect(self.set_length_dialog)
-        self.curve_data.set_gradients_clicked.connect(self.set_gradients_dialog)
-        self.curve_info.cycles_edited.connect(lambda text: self._curve_field_edited("cycles_per_min", text))
+        self.options.changed.connect(lambda: self.redraw())
+        self.cards.currentChanged.connect(lambda _i: edits.show_follow())
+        self.fix_table.model.edit_requested.connect(edits.fix_point_edited, Qt.ConnectionType.QueuedConnection)
+        self.fix_table.view.delete_requested.connect(lambda row: edits.edit("Delete point", editing.delete_point, row))
+        self.fix_table.add_clicked.connect(edits.add_points_dialog)
+        self.pair_table.add_clicked.connect(edits.add_pairs_dialog)
+        self.pair_table.edit_requested.connect(edits.edit_pair_dialog)
+        self.pair_table.view.delete_requested.connect(lambda row: edits.edit("Delete pair", editing.delete_pair,
+                                                                              row + 1))
+        self.pair_table.pair_selected.connect(lambda _k: self.redraw())
+        self.curve_data.field_edited.connect(edits.curve_field_edited)
+        self.curve_data.set_length_clicked.connect(edits.set_length_dialog)
+        self.curve_data.set_gradients_clicked.connect(edits.set_gradients_dialog)
+        self.curve_info.cycles_edited.connect(lambda text: edits.curve_field_edited("cycles_per_min", text))
         for card in (self.sync_card, self.marker_card, self.encoder_card):
-            card.parameter_edited.connect(self._parameter_edited)
+            card.parameter_edited.connect(edits.parameter_edited)
 
-    def _redraw(self, *, zoom: bool = False) -> None:
-        super()._redraw(zoom=zoom)
-        self.trace_overlay.show(self.curve())  # re-wrapped onto the shown curve's master cycle
+    # -- drawing ----------------------------------------------------------------------------------------------------
+    def overlay(self) -> Overlay:
+        """What the diagram shows besides the selected curve (Display Options, selected pair, limits, markers)."""
+        return self.options.overlay(self.curve(), self.parameters, self.pair_table.selected_pair())
+
+    def redraw(self, *, zoom: bool = False) -> None:
+        curve = self.curve()
+        self.diagram.box.accuracy = self.options.accuracy.value()
+        if curve is None:
+            self.diagram.clear_curve()
+        else:
+            self.diagram.show_curve(curve, self.overlay())
+            self.curve_info.show_info(curve, curve_info(curve), slave_limits(curve, self.parameters))
+            if zoom or self.options["auto_scale"]:
+                self.diagram.zoom_reset()
+        self._update_undo()
+        self.setWindowTitle(self.title())
+        self.trace_overlay.show(curve)  # re-wrapped onto the shown curve's master cycle
+
+    def zoom_reset(self) -> None:
+        """Zoom Reset: the whole curve; restores both zoom and pan [DG L3569, L3626]."""
+        self.diagram.zoom_reset()
+
+    def zoom(self, factor: float) -> None:
+        self.options.boxes["auto_scale"].setChecked(False)
+        self.diagram.zoom(factor)
+
+    def show_dialog(self, dialog) -> None:
+        """Dialogs are opened non-blocking (window-modal); ``self.dialog`` is the open one."""
+        self.dialog = dialog
+        dialog.finished.connect(lambda _r: setattr(self, "dialog", None))
+        dialog.open()
 
     # -- state -----------------------------------------------------------------------------------------------------
     def slot(self) -> Slot | None:
@@ -303,7 +327,7 @@ class CamEditor(EditsMixin, QMainWindow):
         for name in ("export", "import", "snap_all"):
             self.actions_by_name[name].setEnabled(curve is not None)
         self.actions_by_name["delete"].setEnabled(slot is not None)
-        self._redraw(zoom=zoom)
+        self.redraw(zoom=zoom)
 
     def _update_undo(self) -> None:
         slot = self.slot()
@@ -328,7 +352,7 @@ class CamEditor(EditsMixin, QMainWindow):
         dialog = AddCurveDialog(self, name)
         dialog.accepted.connect(lambda: self.add_array(dialog.name.text(), dialog.master_length.value(),
                                                        dialog.intervals.value(), dialog.interpolation.isChecked()))
-        self._open(dialog)
+        self.show_dialog(dialog)
 
     def add_array(self, name: str, master_length: float, intervals: int, interpolation: bool) -> bool:
         """Append a curve array after the last array and select it [DG L3582]."""
@@ -342,7 +366,7 @@ class CamEditor(EditsMixin, QMainWindow):
             return False
         self.slots.append(Slot(name, [], curve))
         self.current = len(self.slots) - 1
-        self._set_modified()
+        self.set_modified()
         self.refresh(zoom=True)
         return True
 
@@ -352,7 +376,7 @@ class CamEditor(EditsMixin, QMainWindow):
         name = next(n for n in (curve.name, *(f"{curve.name[:13]}{k}" for k in range(2, 1000))) if n not in taken)
         self.slots.append(Slot(name, [], replace(curve, name=name)))
         self.current = len(self.slots) - 1
-        self._set_modified()
+        self.set_modified()
         self.kinds.setCurrentWidget(self.main_split)
         self.refresh(zoom=True)
 
@@ -361,7 +385,7 @@ class CamEditor(EditsMixin, QMainWindow):
             return
         del self.slots[self.current]
         self.current = min(self.current, len(self.slots) - 1)
-        self._set_modified()
+        self.set_modified()
         self.refresh(zoom=True)
 
     # -- files -----------------------------------------------------------------------------------------------------
@@ -371,7 +395,7 @@ class CamEditor(EditsMixin, QMainWindow):
         answer = QMessageBox.question(self, "CAM-Editor", "Discard the changes?")
         return answer == QMessageBox.StandardButton.Yes
 
-    def _set_modified(self, *, modified: bool = True) -> None:
+    def set_modified(self, *, modified: bool = True) -> None:
         self.modified = modified
         self.setWindowTitle(self.title())
 
@@ -383,7 +407,7 @@ class CamEditor(EditsMixin, QMainWindow):
             self.slots.append(Slot(entry.name, list(entry.values), curve))
         self.current = next((i for i, s in enumerate(self.slots) if s.curve), 0 if self.slots else -1)
         self.path = path
-        self._set_modified(modified=False)
+        self.set_modified(modified=False)
         self.message("")
         self.refresh(zoom=True)
 
@@ -442,7 +466,7 @@ class CamEditor(EditsMixin, QMainWindow):
             self.message(f"Not saved: {exc}")
             return False
         self.path = path
-        self._set_modified(modified=False)
+        self.set_modified(modified=False)
         self.message(f"Saved {path.name}", error=False)
         return True
 
@@ -461,7 +485,7 @@ class CamEditor(EditsMixin, QMainWindow):
             self.message(f"Read from controller failed: {exc}")
             return False
         self.load_config(config, self.path)
-        self._set_modified(modified=True)
+        self.set_modified(modified=True)
         return True
 
     def _controller_name(self) -> str:
@@ -507,7 +531,7 @@ class CamEditor(EditsMixin, QMainWindow):
         except OSError as exc:
             self.message(f"Import refused: {path.name}: {exc.strerror or exc}")
             return False
-        return self.set_curve(curve, "Import")
+        return self.edits.set_curve(curve, "Import")
 
     def export_dialog(self) -> None:
         curve = self.curve()
