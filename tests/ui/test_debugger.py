@@ -20,14 +20,14 @@ def _prepare(window, qtbot):
     editor = window.new_file()
     editor.setPlainText(HELLO)
     assert window.debugger.prepare()
-    qtbot.waitUntil(lambda: editor.debug_current == 3, timeout=5000)
+    qtbot.waitUntil(lambda: editor.debug.debug_current == 3, timeout=5000)
     return editor
 
 
 def _dots(editor):
     doc = editor.document()
-    return {n + 1: editor.debug_dot(doc.findBlockByNumber(n)) for n in range(doc.blockCount())
-            if editor.debug_dot(doc.findBlockByNumber(n))}
+    return {n + 1: editor.debug.debug_dot(doc.findBlockByNumber(n)) for n in range(doc.blockCount())
+            if editor.debug.debug_dot(doc.findBlockByNumber(n))}
 
 
 def _point_at(editor, line, col):
@@ -57,14 +57,14 @@ def test_breakpoint_go_step_inspect_change_and_end(window, qtbot):
     i to 50 ends the loop; an 11th breakpoint is refused; End Debug keeps the red dots (DG L3390-3430)."""
     editor = _prepare(window, qtbot)
     qtbot.mouseDClick(editor.viewport(), Qt.MouseButton.LeftButton, pos=_point_at(editor, 5, 4))
-    assert editor.breakpoints() == [5]
+    assert editor.debug.breakpoints() == [5]
     assert _dots(editor)[5] == DOT_RED
     window.actions_by_text["Go"].trigger()
-    qtbot.waitUntil(lambda: editor.debug_current == 5, timeout=5000)
+    qtbot.waitUntil(lambda: editor.debug.debug_current == 5, timeout=5000)
     qtbot.keyClick(editor, Qt.Key.Key_F9)
-    qtbot.waitUntil(lambda: editor.debug_current == 6, timeout=5000)
+    qtbot.waitUntil(lambda: editor.debug.debug_current == 6, timeout=5000)
     qtbot.waitUntil(lambda: "Hello: 1" in window.messages.toPlainText(), timeout=5000)
-    assert editor.variable_at(_point_at(editor, 7, 3)) == "i"
+    assert editor.debug.variable_at(_point_at(editor, 7, 3)) == "i"
     assert window.debugger.read_value("i") == "1"
     assert window.debugger.write_value("i", "50")
     window.actions_by_text["Go"].trigger()
@@ -72,20 +72,20 @@ def test_breakpoint_go_step_inspect_change_and_end(window, qtbot):
     assert "Hello: 2" not in window.messages.toPlainText()
     # at most 10 breakpoints (DG L3430): fill with the executable lines, then one more is refused
     for line in (3, 4, 6, 7, 9):
-        assert editor.toggle_breakpoint(line) is None
-    assert len(editor.breakpoints()) == 6
-    assert editor.toggle_breakpoint(2) is not None  # DIM: no blue dot, no breakpoint
+        assert editor.debug.toggle_breakpoint(line) is None
+    assert len(editor.debug.breakpoints()) == 6
+    assert editor.debug.toggle_breakpoint(2) is not None  # DIM: no blue dot, no breakpoint
     window.actions_by_text["End Debug"].trigger()
     assert not editor.isReadOnly()
     assert set(_dots(editor).values()) == {DOT_RED}
-    assert editor.breakpoints() == [3, 4, 5, 6, 7, 9]
+    assert editor.debug.breakpoints() == [3, 4, 5, 6, 7, 9]
 
 
 def test_an_eleventh_breakpoint_is_refused(window, qtbot):
     editor = window.new_file()
     editor.setPlainText("".join(f"x{n} = {n}\n" for n in range(12)))
     assert window.debugger.prepare()
-    refusals = [editor.toggle_breakpoint(line) for line in range(1, 12)]
+    refusals = [editor.debug.toggle_breakpoint(line) for line in range(1, 12)]
     assert refusals[:10] == [None] * 10
     assert "at most 10" in refusals[10]
     window.debugger.end()

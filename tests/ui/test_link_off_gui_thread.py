@@ -206,7 +206,7 @@ def debugging(qtbot, w, tmp_path):
     program(w, tmp_path)
     editor = w.current_editor()
     w.actions_by_text["Prepare Singlestep"].trigger()
-    qtbot.waitUntil(lambda: editor.debug_current == 1, timeout=20_000)
+    qtbot.waitUntil(lambda: editor.debug.debug_current == 1, timeout=20_000)
     RECORD.clear()
     return editor
 
@@ -220,7 +220,7 @@ def at(editor, line: int, col: int) -> QPoint:
 def step_to_print(qtbot, w, editor) -> None:
     editor.setFocus()
     qtbot.keyClick(editor, Qt.Key.Key_F9)
-    qtbot.waitUntil(lambda: editor.debug_current == 2, timeout=20_000)
+    qtbot.waitUntil(lambda: editor.debug.debug_current == 2, timeout=20_000)
 
 
 def prepare_singlestep(qtbot, w, tmp_path) -> None:
@@ -236,9 +236,9 @@ def breakpoint_go(qtbot, w, tmp_path) -> None:
     editor = debugging(qtbot, w, tmp_path)
     qtbot.mouseClick(editor.viewport(), Qt.MouseButton.LeftButton, pos=at(editor, 2, 2))
     qtbot.mouseDClick(editor.viewport(), Qt.MouseButton.LeftButton, pos=at(editor, 2, 2))
-    assert editor.breakpoints() == [2]
+    assert editor.debug.breakpoints() == [2]
     w.actions_by_text["Go"].trigger()
-    qtbot.waitUntil(lambda: editor.debug_current == 2, timeout=20_000)
+    qtbot.waitUntil(lambda: editor.debug.debug_current == 2, timeout=20_000)
 
 
 def singlestep(qtbot, w, tmp_path) -> None:
@@ -251,7 +251,7 @@ def variable_value(qtbot, w, tmp_path) -> None:
     step_to_print(qtbot, w, editor)
     RECORD.clear()
     qtbot.mouseClick(editor.viewport(), Qt.MouseButton.LeftButton, pos=at(editor, 2, 15))
-    qtbot.waitUntil(lambda: editor.value_popup is not None and editor.value_popup.text() == "x = 1",
+    qtbot.waitUntil(lambda: editor.debug.value_popup is not None and editor.debug.value_popup.text() == "x = 1",
                     timeout=20_000)
 
 

@@ -36,6 +36,28 @@ def test_open_file_shows_text_and_cursor_position(window, tmp_path):
     assert window.open_file(program) is editor  # one program, one window (ide-spec 1.1)
 
 
+def test_edit_menu_entries_act_on_the_program_being_edited(window):
+    """DG L2294-2299: Edit → Toggle/Next/Clear All Bookmarks, Convert Tabs, Find; "[Ctrl]-[F2] will toggle the
+    bookmark on the current line" (L2348), Convert Tabs "will replace tab characters ... with space characters"
+    using the editor's tab spacing (L2356-2358). The entries reach the editor's parts (issue 27 item 7)."""
+    editor = window.new_file()
+    editor.setPlainText("a\n\tb\nc\n\td\n")
+    entry = window.actions_by_text
+    editor.goto_line(3)
+    entry["Toggle Bookmark"].trigger()
+    assert editor.bookmarks.lines() == [3]
+    editor.goto_line(1)
+    entry["Next Bookmark"].trigger()
+    assert editor.caret_line_col() == (3, 1)
+    entry["Clear All Bookmarks"].trigger()
+    assert editor.bookmarks.lines() == []
+    entry["Convert Tabs"].trigger()
+    spaces = " " * editor.settings.tab_size
+    assert editor.toPlainText() == f"a\n{spaces}b\nc\n{spaces}d\n"
+    entry["Find..."].trigger()
+    assert editor.search.find_dialog is not None and editor.search.find_dialog.isVisible()
+
+
 def test_sample_syntax_check_and_error_at_the_right_line(window, qtbot):
     """DG 2479-2483: F4 test-compiles; on an error the message names the line and the caret goes there."""
     editor = window.open_sample("01_positioning.m")

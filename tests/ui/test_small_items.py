@@ -287,10 +287,10 @@ def test_the_value_popup_leaves_the_next_line_readable_and_goes_when_a_dialog_op
 
     editor = _prepare(window, qtbot)
     qtbot.keyClick(editor, Qt.Key.Key_F9)                     # i = 1 has run
-    qtbot.waitUntil(lambda: editor.debug_current == 4, timeout=5000)
+    qtbot.waitUntil(lambda: editor.debug.debug_current == 4, timeout=5000)
     at = _point_at(editor, 3, 1)                              # the `i` of `i = 1`
     qtbot.mouseClick(editor.viewport(), Qt.MouseButton.LeftButton, pos=at)
-    popup = editor.value_popup
+    popup = editor.debug.value_popup
     qtbot.waitUntil(lambda: popup is not None and popup.isVisible(), timeout=2000)
     cursor = editor.textCursor()
     cursor.setPosition(editor.document().findBlockByNumber(3).position())   # line 4, `while …`

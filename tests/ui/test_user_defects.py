@@ -47,10 +47,10 @@ def test_the_value_popup_stays_after_the_click_until_the_mouse_moves_away(window
     away". It vanished as the button was released."""
     editor = _prepare(window, qtbot)
     qtbot.keyClick(editor, Qt.Key.Key_F9)                     # i = 1 has run
-    qtbot.waitUntil(lambda: editor.debug_current == 4, timeout=5000)
+    qtbot.waitUntil(lambda: editor.debug.debug_current == 4, timeout=5000)
     at = _point_at(editor, 3, 1)                              # the `i` of `i = 1`
     qtbot.mouseClick(editor.viewport(), Qt.MouseButton.LeftButton, pos=at)
-    popup = editor.value_popup
+    popup = editor.debug.value_popup
     qtbot.wait(100)
     assert popup is not None and popup.isVisible() and popup.text() == "i = 1"
     qtbot.mouseMove(editor.viewport(), at + QPoint(3, 1))     # a small move keeps it
@@ -99,7 +99,7 @@ def test_a_syntax_error_mark_does_not_look_like_a_breakpoint(window, qtbot):
     """ide-spec 3.5: breakpoints are red dots; an error's mark is a red square with a white cross."""
     editor = _prepare(window, qtbot)
     qtbot.mouseDClick(editor.viewport(), Qt.MouseButton.LeftButton, pos=_point_at(editor, 5, 4))
-    assert editor.breakpoints() == [5]
+    assert editor.debug.breakpoints() == [5]
     window.actions_by_text["End Debug"].trigger()
     cursor = editor.textCursor()
     cursor.setPosition(editor.document().findBlockByNumber(6).position())
@@ -204,11 +204,11 @@ def test_single_step_from_the_end_of_a_while_body_stops_at_the_while_test(window
     """DG L3400-3402: F9 stops before the next statement to run; after `i = i + 1` (line 7) that is the WHILE
     test on line 4, not the print inside the loop (line 5)."""
     editor = _prepare(window, qtbot)
-    lines = [editor.debug_current]
+    lines = [editor.debug.debug_current]
     for _ in range(5):
         qtbot.keyClick(editor, Qt.Key.Key_F9)
-        qtbot.waitUntil(lambda: editor.debug_current not in (None, lines[-1]), timeout=5000)
-        lines.append(editor.debug_current)
+        qtbot.waitUntil(lambda: editor.debug.debug_current not in (None, lines[-1]), timeout=5000)
+        lines.append(editor.debug.debug_current)
     assert lines == [3, 4, 5, 6, 7, 4]
     assert HELLO.splitlines()[3].startswith("while")
     window.debugger.end()

@@ -84,16 +84,16 @@ class Debugger(QObject):
         editor = self.w.current_editor()
 
         def loaded(lines) -> list[int]:
-            editor.set_debug_lines(set(lines))
-            return [n for n in editor.breakpoints() if n in editor.debug_lines]
+            editor.debug.set_debug_lines(set(lines))
+            return [n for n in editor.debug.breakpoints() if n in editor.debug.debug_lines]
 
         if not self.run.prepare(image, dev.compiler_settings().stack_size, loaded):
-            editor.end_debug()
+            editor.debug.end_debug()
             return False
         self.editor = editor
         dev.ran[self.w.bridge.controller_id] = editor
         dev.images[self.w.bridge.controller_id] = image
-        editor.variable_value = self.read_value
+        editor.debug.variable_value = self.read_value
         editor.breakpointsChanged.connect(self._send_breakpoints)
         editor.variableEditRequested.connect(self.change_value)
         self.watch.set_variables(program_variables(image), program_arrays(image))
@@ -110,7 +110,7 @@ class Debugger(QObject):
     def step(self) -> None:
         """Singlestep F9 (DG L2440-2442): run the yellow statement, stop before the next one."""
         if self.active:
-            self.editor.set_debug_current(None)
+            self.editor.debug.set_debug_current(None)
             self.run.step()
             self.w.bridge.poll()
 
@@ -121,23 +121,23 @@ class Debugger(QObject):
         editor, self.editor = self.editor, None
         editor.breakpointsChanged.disconnect(self._send_breakpoints)
         editor.variableEditRequested.disconnect(self.change_value)
-        editor.end_debug()
+        editor.debug.end_debug()
         self.run.end()
         self.w.messages.ide("Debug ended")
 
     def _send_breakpoints(self) -> None:
-        self.run.set_breakpoints(self.editor.breakpoints())
+        self.run.set_breakpoints(self.editor.debug.breakpoints())
         self.w.bridge.poll()
 
     def _status_changed(self, status) -> None:
         if not self.active:
             return
         if status.program_state == "break" and status.line:
-            self.editor.set_debug_current(status.line)
+            self.editor.debug.set_debug_current(status.line)
         elif status.program_state in ("ended", "error", "idle"):
-            self.editor.set_debug_current(None)
+            self.editor.debug.set_debug_current(None)
         else:
-            self.editor.set_debug_current(None)
+            self.editor.debug.set_debug_current(None)
 
     # --- variables -------------------------------------------------------------------------------------
     def read_watch(self, kind: str, key: str):

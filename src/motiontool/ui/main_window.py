@@ -161,7 +161,7 @@ class MainWindow(QMainWindow):
         data = read_bytes(path, MAX_SOURCE_BYTES, "program file")  # a device or pipe would never end (R4)
         text = data.decode("utf-8", errors="replace").replace("\r\n", "\n")
         editor = self._add_editor(path.name, text, path)
-        editor.load_bookmarks(self.bookmark_store, path=path)
+        editor.bookmarks.load_bookmarks(self.bookmark_store, path=path)
         self._remember_recent(path)
         return editor
 
@@ -306,7 +306,7 @@ class MainWindow(QMainWindow):
 
     def _save_bookmarks(self, editor: CodeEditor, path) -> None:
         try:
-            editor.save_bookmarks(self.bookmark_store, path=path)
+            editor.bookmarks.save_bookmarks(self.bookmark_store, path=path)
         except OSError as exc:  # the program itself is saved; its bookmarks are a convenience
             self.messages.ide(f"Bookmarks not saved: cannot write {self.bookmark_store.path}: {exc.strerror or exc}")
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import operator
+
 import pytest
 from PySide6.QtCore import QEvent, QPoint, Qt
 from PySide6.QtGui import QAction, QHelpEvent, QKeySequence, QTextCharFormat, QTextCursor
@@ -9,6 +11,7 @@ from PySide6.QtWidgets import QApplication, QMainWindow, QToolTip
 
 from motiontool.aposs.driver import compile_source
 from motiontool.ui.editor import BookmarkStore, CodeEditor, EditorSettings, OutlineItem
+from motiontool.ui.editor.keymap import EDITING, KEYMAP
 from motiontool.ui.editor.macros import MacroSlots
 
 CTRL, SHIFT, ALT = (Qt.KeyboardModifier.ControlModifier, Qt.KeyboardModifier.ShiftModifier,
@@ -38,14 +41,14 @@ def test_bookmarks_move_with_inserted_lines_and_f2_cycles(qtbot, editor):
     press(qtbot, editor, Qt.Key.Key_F2, CTRL)  # Ctrl-F2 toggles [DG L2118]
     editor.goto_line(8)
     press(qtbot, editor, Qt.Key.Key_F2, CTRL)
-    assert editor.bookmarks() == [4, 8]
+    assert editor.bookmarks.lines() == [4, 8]
     editor.goto_line(1)
     qtbot.keyClicks(editor, "new")
     press(qtbot, editor, Qt.Key.Key_Return, times=2)  # two lines inserted above the marks
-    assert editor.bookmarks() == [6, 10]
+    assert editor.bookmarks.lines() == [6, 10]
     editor.goto_line(6)
     press(qtbot, editor, Qt.Key.Key_Return)  # Return at the start of a marked line: the mark moves down with it
-    assert editor.bookmarks() == [7, 11]
+    assert editor.bookmarks.lines() == [7, 11]
     editor.goto_line(1)
     visited = []
     for _ in range(3):
@@ -55,9 +58,9 @@ def test_bookmarks_move_with_inserted_lines_and_f2_cycles(qtbot, editor):
     press(qtbot, editor, Qt.Key.Key_F2, SHIFT)
     assert editor.caret_line_col()[0] == 11
     press(qtbot, editor, Qt.Key.Key_F2, CTRL)  # toggle off on line 11
-    assert editor.bookmarks() == [7]
-    editor.clear_bookmarks()
-    assert editor.bookmarks() == [] and editor.next_bookmark() is None
+    assert editor.bookmarks.lines() == [7]
+    editor.bookmarks.clear_bookmarks()
+    assert editor.bookmarks.lines() == [] and editor.bookmarks.next_bookmark() is None
 
 
 def test_editor_keys_win_over_window_shortcuts(qtbot):
@@ -73,7 +76,7 @@ def test_editor_keys_win_over_window_shortcuts(qtbot):
     qtbot.waitExposed(window)
     editor.setFocus()
     editor.setPlainText(TEN_LINES)
-    editor.set_bookmarks([5])
+    editor.bookmarks.set_bookmarks([5])
     editor.goto_line(1)
     press(qtbot, editor, Qt.Key.Key_F2)
     assert editor.caret_line_col()[0] == 5 and not fired
@@ -85,13 +88,13 @@ def test_bookmarks_saved_outside_the_program(qtbot, editor, tmp_path):
     store = BookmarkStore(tmp_path / "cfg" / "bookmarks.json")
     editor.setPlainText(TEN_LINES)
     editor.file_path = program
-    editor.set_bookmarks([2, 9])
-    editor.save_bookmarks(store)
+    editor.bookmarks.set_bookmarks([2, 9])
+    editor.bookmarks.save_bookmarks(store)
     again = CodeEditor()
     qtbot.addWidget(again)
     again.setPlainText(program.read_text(encoding="utf-8"))
-    again.load_bookmarks(store, path=program)
-    assert again.bookmarks() == [2, 9]
+    again.bookmarks.load_bookmarks(store, path=program)
+    assert again.bookmarks.lines() == [2, 9]
     assert program.read_text(encoding="utf-8") == TEN_LINES
 
 
@@ -99,10 +102,10 @@ def test_bookmarks_saved_outside_the_program(qtbot, editor, tmp_path):
 
 def test_convert_tabs_is_one_undo_step_and_keeps_bookmarks(qtbot, editor):
     editor.setPlainText("\tPOSA 1\nab\tcd\nno tabs")
-    editor.set_bookmarks([2])
-    assert editor.convert_tabs() == 2
+    editor.bookmarks.set_bookmarks([2])
+    assert editor.edit.convert_tabs() == 2
     assert editor.toPlainText() == "    POSA 1\nab  cd\nno tabs"
-    assert editor.bookmarks() == [2]
+    assert editor.bookmarks.lines() == [2]
     press(qtbot, editor, Qt.Key.Key_Z, CTRL)
     assert editor.toPlainText() == "\tPOSA 1\nab\tcd\nno tabs"
 
@@ -180,7 +183,7 @@ def test_case_bracket_select_overwrite_and_undo_keys(qtbot, editor):
 
 def test_repeat_next_command(qtbot, editor):
     editor.setPlainText("")
-    editor.repeat_next(5)
+    editor.edit.repeat_next(5)
     qtbot.keyClicks(editor, "x")
     assert editor.toPlainText() == "xxxxx"
 
@@ -220,19 +223,19 @@ def test_mouse_word_and_line_selection(qtbot, editor):
 def test_macro_record_and_replay(qtbot, editor):
     editor.setPlainText("")
     press(qtbot, editor, Qt.Key.Key_R, CTRL | SHIFT)  # start recording [DG L2206]
-    assert editor.is_recording
+    assert editor.recorder.is_recording
     qtbot.keyClicks(editor, "ab")
     press(qtbot, editor, Qt.Key.Key_Return)
     press(qtbot, editor, Qt.Key.Key_R, CTRL | SHIFT)  # stop
-    assert not editor.is_recording
+    assert not editor.recorder.is_recording
     assert editor.toPlainText() == "ab\n"
-    assert editor.play_macro()
+    assert editor.recorder.play_macro()
     assert editor.toPlainText() == "ab\nab\n"
-    editor.macros.assign("Alt+M", editor.last_macro)
+    editor.macros.assign("Alt+M", editor.recorder.last_macro)
     press(qtbot, editor, Qt.Key.Key_M, ALT)  # the saved shortcut plays it
     assert editor.toPlainText() == "ab\nab\nab\n"
-    editor.clear_macros()
-    assert not editor.play_macro()
+    editor.recorder.clear_macros()
+    assert not editor.recorder.play_macro()
 
 
 def test_stopping_with_the_key_opens_save_macro(qtbot, editor):
@@ -243,7 +246,7 @@ def test_stopping_with_the_key_opens_save_macro(qtbot, editor):
     press(qtbot, editor, Qt.Key.Key_R, CTRL | SHIFT)
     qtbot.keyClicks(editor, "q")
     press(qtbot, editor, Qt.Key.Key_R, CTRL | SHIFT)
-    dialog = editor.macro_dialog
+    dialog = editor.recorder.macro_dialog
     assert dialog.isVisible() and dialog.slot_list.count() == 10
     assert dialog.slot_list.item(0).text() == "1 : <unassigned>" and not dialog.ok_button.isEnabled()
     dialog.shortcut_edit.setKeySequence(QKeySequence("F3"))
@@ -274,13 +277,13 @@ def test_at_most_ten_macros():
 
 def test_macro_records_editor_commands(qtbot, editor):
     editor.setPlainText("x = 1\ny = 2\nz = 3")
-    editor.start_recording()
+    editor.recorder.start_recording()
     press(qtbot, editor, Qt.Key.Key_F2, CTRL)  # toggle bookmark
     press(qtbot, editor, Qt.Key.Key_Down)
-    keys = editor.stop_recording(shortcut="Ctrl+Shift+M")
+    keys = editor.recorder.stop_recording(shortcut="Ctrl+Shift+M")
     assert len(keys) == 2 and editor.macros.shortcuts() == ["Ctrl+Shift+M"]
-    editor.play_macro(shortcut="Ctrl+Shift+M")
-    assert editor.bookmarks() == [1, 2] and editor.caret_line_col()[0] == 3
+    editor.recorder.play_macro(shortcut="Ctrl+Shift+M")
+    assert editor.bookmarks.lines() == [1, 2] and editor.caret_line_col()[0] == 3
 
 
 # --- completion and hover help ------------------------------------------------------------------------------
@@ -374,7 +377,7 @@ def test_context_menu_entries(editor):
                        ["Clear All Bookmarks"]]
     toggle = next(a for a in menu.actions() if a.text().startswith("Toggle"))
     toggle.trigger()
-    assert editor.bookmarks() == [1]
+    assert editor.bookmarks.lines() == [1]
 
 
 def test_margin_grows_with_line_count(editor):
@@ -450,7 +453,7 @@ def test_read_only_editor_moves_but_does_not_edit(qtbot, editor):
         press(qtbot, editor, key, mods)
     assert editor.toPlainText() == TEN_LINES
     press(qtbot, editor, Qt.Key.Key_F2, CTRL)
-    assert editor.bookmarks() == [2]
+    assert editor.bookmarks.lines() == [2]
 
 
 def test_scroll_keys_move_the_view_not_the_caret(qtbot, editor):
@@ -460,3 +463,18 @@ def test_scroll_keys_move_the_view_not_the_caret(qtbot, editor):
     assert editor.verticalScrollBar().value() == 3 and editor.caret_line_col() == (1, 1)
     press(qtbot, editor, Qt.Key.Key_PageDown, CTRL)
     assert editor.horizontalScrollBar().value() > 0 and editor.caret_line_col() == (1, 1)
+
+
+def test_every_editor_key_names_a_function_of_the_editor_or_its_parts(editor):
+    """DG L2107-2170 list the editor's keys; each KEYMAP entry ("edit.cut_line", "undo") must name a callable on
+    the editor or one of its parts (issue 27 item 7), or the key would fail only when pressed."""
+
+    def resolves(name: str) -> bool:
+        try:
+            return callable(operator.attrgetter(name)(editor))
+        except AttributeError:
+            return False
+
+    names = {v if isinstance(v, str) else v[0] for v in KEYMAP.values()}
+    assert EDITING - names == set()  # a name the keymap no longer has
+    assert [n for n in sorted(names) if not resolves(n)] == []

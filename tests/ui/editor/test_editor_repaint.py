@@ -99,7 +99,7 @@ def test_an_opened_comment_recolours_and_repaints_the_lines_below(qtbot, editor)
 
 def test_the_screen_always_shows_what_a_full_repaint_shows(qtbot, editor):
     editor.setPlainText(PROGRAM)
-    editor.toggle_bookmark(line=12)
+    editor.bookmarks.toggle_bookmark(line=12)
     editor.goto_line(10)
     QApplication.processEvents()
     doc = editor.document()

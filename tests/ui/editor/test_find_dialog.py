@@ -17,7 +17,7 @@ def dialog(qtbot, editor):
     editor.setPlainText(PROGRAM)
     editor.goto_line(1)
     press(qtbot, editor, Qt.Key.Key_R, CTRL)  # Ctrl-R: Find and Replace [DG L2152]
-    dlg = editor._find_dialog
+    dlg = editor.search.find_dialog
     assert isinstance(dlg, FindReplaceDialog) and dlg.isVisible() and dlg.replace_edit.isVisible()
     return dlg
 
@@ -39,7 +39,7 @@ def selected(editor) -> tuple[int, str]:
 def test_ctrl_f_opens_find_without_replace(qtbot, editor):
     editor.setPlainText(PROGRAM)
     press(qtbot, editor, Qt.Key.Key_F, CTRL)
-    dlg = editor._find_dialog
+    dlg = editor.search.find_dialog
     assert dlg.isVisible() and dlg.windowTitle() == "Find" and not dlg.replace_edit.isVisible()
 
 
@@ -113,14 +113,14 @@ def test_replace_steps_through_hits(qtbot, editor, dialog):
 
 
 def test_replace_all_is_one_undo_step(qtbot, editor, dialog):
-    editor.set_bookmarks([4])
+    editor.bookmarks.set_bookmarks([4])
     use_syntax(dialog, "pattern")
     dialog.find_edit.setText(r"vel[ \t]*[0-9]")
     dialog.replace_edit.setText(r"v\t")
     qtbot.mouseClick(dialog.replace_all_button, Qt.MouseButton.LeftButton)
     assert "3 replacement(s)" in dialog.status.text()
     assert editor.toPlainText() == "v\t = 10\nv\t = 100\nacc = 1000\nv\t \t= 5\nvelocity = 7\n"
-    assert editor.bookmarks() == [4]  # edits in place keep the line marks
+    assert editor.bookmarks.lines() == [4]  # edits in place keep the line marks
     press(qtbot, editor, Qt.Key.Key_Z, CTRL)  # ONE undo brings back the whole text ...
     assert editor.toPlainText() == PROGRAM
     assert not editor.document().isUndoAvailable()  # ... and it was the only step
@@ -128,7 +128,7 @@ def test_replace_all_is_one_undo_step(qtbot, editor, dialog):
 
 def test_replace_all_in_regex_mode_with_groups(editor):
     editor.setPlainText(PROGRAM)
-    count = editor.replace_all(r"vel(\d)", r"axis\1_vel", options=SearchOptions(mode="regex"))
+    count = editor.search.replace_all(r"vel(\d)", r"axis\1_vel", options=SearchOptions(mode="regex"))
     assert count == 3 and editor.toPlainText().startswith("axis1_vel = 10\naxis2_vel = 100")
 
 
@@ -136,7 +136,7 @@ def test_mark_all_bookmarks_every_hit_line(qtbot, editor, dialog):
     """DG L2306: 'Mark All ... all instances found are immediately "bookmarked" ... [F2] can then be used'."""
     dialog.find_edit.setText("vel")
     qtbot.mouseClick(dialog.mark_button, Qt.MouseButton.LeftButton)
-    assert editor.bookmarks() == [1, 2, 4, 5]
+    assert editor.bookmarks.lines() == [1, 2, 4, 5]
     editor.goto_line(2)
     press(qtbot, editor, Qt.Key.Key_F2)
     assert editor.caret_line_col()[0] == 4
@@ -156,7 +156,7 @@ def test_ctrl_f3_finds_the_word_under_the_caret(qtbot, editor):
 
 def test_find_with_emoji_before_the_hit(editor):
     editor.setPlainText("// \U0001F600 comment\nPOSA 1")
-    assert editor.find(text="POSA")
+    assert editor.search.find(text="POSA")
     assert editor.textCursor().selectedText() == "POSA"
 
 
@@ -167,7 +167,7 @@ def test_find_in_files_dialog(qtbot, editor, tmp_path):
     editor.setPlainText("GOSUB home\n")
     editor.file_path = tmp_path / "main.m"
     editor.goto_line(1, col=8)
-    dlg = editor.show_find_in_files()
+    dlg = editor.search.show_find_in_files()
     assert isinstance(dlg, FindInFilesDialog) and dlg.find_edit.text() == "home"
     hits = dlg.run_search()
     assert [(h.path.name, h.line) for h in hits] == [("home.m", 1), ("home.m", 2), ("main.m", 1)]

@@ -1,27 +1,33 @@
 """Bookmarks in the program editor (ide-spec 1.37): kept in the text blocks' data, so they move with their lines;
-saved outside the program file by bookmarks.BookmarkStore.  Mixed into CodeEditor."""
+saved outside the program file by bookmarks.BookmarkStore.  A part of the CodeEditor, ``editor.bookmarks``."""
 
 from __future__ import annotations
 
 from collections.abc import Iterable
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from PySide6.QtGui import QTextBlock
 
 from motiontool.ui.editor.bookmarks import BookmarkStore, next_bookmark
 from motiontool.ui.editor.debug_marks import BlockData
 
+if TYPE_CHECKING:
+    from motiontool.ui.editor.code_editor import CodeEditor
 
-class BookmarkMixin:
-    """Needs from the editor: document(), textCursor(), gutter, bookmarksChanged, caret_line_col(), goto_line(),
-    file_path."""
+
+class Bookmarks:
+    """The bookmarks of one CodeEditor; it reaches the editor only through ``self.editor``."""
+
+    def __init__(self, editor: CodeEditor) -> None:
+        self.editor = editor
 
     @staticmethod
     def has_bookmark(block: QTextBlock) -> bool:
         data = block.userData()
         return isinstance(data, BlockData) and data.bookmark
 
-    def _set_bookmark(self, block: QTextBlock, on: bool) -> None:
+    def set_bookmark(self, block: QTextBlock, on: bool) -> None:
         data = block.userData()
         if not isinstance(data, BlockData):
             if not on:
@@ -30,9 +36,9 @@ class BookmarkMixin:
             block.setUserData(data)
         data.bookmark = on
 
-    def bookmarks(self) -> list[int]:
+    def lines(self) -> list[int]:
         """The bookmarked lines, 1-based, ascending."""
-        lines, block = [], self.document().begin()
+        lines, block = [], self.editor.document().begin()
         while block.isValid():
             if self.has_bookmark(block):
                 lines.append(block.blockNumber() + 1)
@@ -42,23 +48,23 @@ class BookmarkMixin:
     def set_bookmarks(self, lines: Iterable[int]) -> None:
         """Replace all bookmarks by `lines` (1-based; lines past the end are ignored)."""
         wanted = set(lines)
-        block = self.document().begin()
+        block = self.editor.document().begin()
         while block.isValid():
-            self._set_bookmark(block, block.blockNumber() + 1 in wanted)
+            self.set_bookmark(block, block.blockNumber() + 1 in wanted)
             block = block.next()
-        self._bookmarks_changed()
+        self.changed()
 
-    def _bookmarks_changed(self) -> None:
-        self.gutter.update()
-        self.bookmarksChanged.emit()
+    def changed(self) -> None:
+        self.editor.gutter.update()
+        self.editor.bookmarksChanged.emit()
 
     def toggle_bookmark(self, *, line: int | None = None) -> bool:
         """Ctrl-F2: toggle the bookmark on `line` (default: the caret line); True if it is now set."""
-        block = (self.textCursor().block() if line is None
-                 else self.document().findBlockByNumber(line - 1))
+        block = (self.editor.textCursor().block() if line is None
+                 else self.editor.document().findBlockByNumber(line - 1))
         on = not self.has_bookmark(block)
-        self._set_bookmark(block, on)
-        self._bookmarks_changed()
+        self.set_bookmark(block, on)
+        self.changed()
         return on
 
     def clear_bookmarks(self) -> None:
@@ -66,9 +72,9 @@ class BookmarkMixin:
         self.set_bookmarks(())
 
     def _goto_bookmark(self, backward: bool) -> int | None:
-        target = next_bookmark(self.bookmarks(), self.caret_line_col()[0], backward)
+        target = next_bookmark(self.lines(), self.editor.caret_line_col()[0], backward)
         if target is not None:
-            self.goto_line(target)
+            self.editor.goto_line(target)
         return target
 
     def next_bookmark(self) -> int | None:
@@ -81,12 +87,12 @@ class BookmarkMixin:
 
     def load_bookmarks(self, store: BookmarkStore, *, path: str | Path | None = None) -> None:
         """Restore the bookmarks of `path` (default: file_path) from `store`."""
-        path = path or self.file_path
+        path = path or self.editor.file_path
         if path is not None:
-            self.file_path = Path(path)
+            self.editor.file_path = Path(path)
             self.set_bookmarks(store.load(path))
 
     def save_bookmarks(self, store: BookmarkStore, *, path: str | Path | None = None) -> None:
-        path = path or self.file_path
+        path = path or self.editor.file_path
         if path is not None:
-            store.save(path, self.bookmarks())
+            store.save(path, self.lines())

@@ -8,10 +8,13 @@ parameters, the manual's context menu and keyboard functions, and key macros.
 
 The editor handles its own keys (it accepts ShortcutOverride for them), so the keys work the same whether
 or not the main window binds its Edit-menu entries; the window may connect the entries to the same methods.
+Parts it owns (issue 27 item 7), each reaching it through one typed reference: ``edit``, ``search``, ``recorder``
+(macros), ``debug`` (debug_marks), ``bookmarks`` (bookmark_marks). Signals and Qt event handlers stay here.
 """
 
 from __future__ import annotations
 
+import operator
 import re
 from collections.abc import Iterable
 from pathlib import Path
@@ -37,46 +40,25 @@ from PySide6.QtGui import (
 from PySide6.QtWidgets import QCompleter, QMenu, QPlainTextEdit, QTextEdit, QToolTip, QWidget
 
 from motiontool.ui.editor import dpl_lang, lang, outline
-from motiontool.ui.editor.bookmark_marks import BookmarkMixin
+from motiontool.ui.editor.bookmark_marks import Bookmarks
 from motiontool.ui.editor.completion import CompletionModel, HintDelegate
-from motiontool.ui.editor.debug_marks import DebugMarksMixin
+from motiontool.ui.editor.debug_marks import DebugMarks
 from motiontool.ui.editor.doc_layout import install_line_layout
-from motiontool.ui.editor.editing import EditingMixin
+from motiontool.ui.editor.editing import Editing
 from motiontool.ui.editor.gutter import LineNumberArea
 from motiontool.ui.editor.highlighter import AposHighlighter
-from motiontool.ui.editor.macros import RECORD_SHORTCUT, KeyStroke, MacroMixin, MacroSlots, combination
-from motiontool.ui.editor.searching import SearchMixin
+from motiontool.ui.editor.keymap import EDITING, KEYMAP
+from motiontool.ui.editor.macros import MacroRecorder, MacroSlots, combination
+from motiontool.ui.editor.searching import Searching
 from motiontool.ui.editor.settings import EditorSettings
 
 AUTO_COMPLETE_LETTERS = 3
-_EDITING = frozenset({"cut", "paste", "cut_line", "cut_paragraph", "delete_word_end", "undo", "redo",
-                      "lowercase_selection", "uppercase_selection", "insert_line_above", "toggle_overwrite",
-                      "show_replace_dialog", "repeat_dialog", "toggle_recording", "complete"})
 _CHOOSING_KEYS = frozenset({Qt.Key.Key_Up, Qt.Key.Key_Down, Qt.Key.Key_PageUp, Qt.Key.Key_PageDown})
 _LINEFEED = 0x0A  # the key code of X11's Linefeed keysym (Qt names none)
 _MODIFIER_KEYS = frozenset({Qt.Key.Key_Shift, Qt.Key.Key_Control, Qt.Key.Key_Alt, Qt.Key.Key_Meta,
                             Qt.Key.Key_AltGr})
 _DIAG_TOKEN_RE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*|\d[A-Za-z0-9_.]*|\"[^\"]*\"?|\S")
 
-# key → method name, or (method name, arguments..., {options}) (ide-spec 1.14-1.19); Tab, Shift-Tab, Return: in code.
-KEYMAP: dict[str, str | tuple] = {
-    "F2": "next_bookmark", "Shift+F2": "previous_bookmark", "Ctrl+F2": "toggle_bookmark",
-    "Ctrl+G": "goto_line_dialog", "Ctrl+B": "goto_matching_bracket",
-    "Ctrl+Alt+Down": "goto_next_blank_line", "Ctrl+Alt+Up": "goto_previous_blank_line",
-    "Ctrl+Right": "move_word_end", "Ctrl+Shift+Right": ("move_word_end", {"select": True}),
-    "Ctrl+Alt+F8": "select_line",
-    "Ctrl+Ins": "copy", "Shift+Del": "cut", "Shift+Ins": "paste", "Ctrl+Y": "cut_line",
-    "Ctrl+Alt+K": "cut_paragraph", "Ctrl+Del": "delete_word_end",
-    "Ctrl+F": "show_find_dialog", "Alt+F3": "show_find_dialog", "Ctrl+R": "show_replace_dialog",
-    "F3": "find_next", "Shift+F3": "find_previous", "Ctrl+F3": "find_word",
-    "Ctrl+Shift+F3": ("find_word", {"backward": True}),
-    "Ins": "toggle_overwrite", "Alt+Backspace": "undo", "Ctrl+Z": "undo", "Ctrl+Shift+Z": "redo",
-    "Ctrl+U": "lowercase_selection", "Ctrl+Shift+U": "uppercase_selection", "Ctrl+Shift+N": "insert_line_above",
-    "Ctrl+Alt+R": "repeat_dialog", RECORD_SHORTCUT: "toggle_recording",
-    "Ctrl+Up": ("scroll_lines", -1), "Ctrl+Down": ("scroll_lines", 1), "Ctrl+PgUp": ("scroll_columns", -1),
-    "Ctrl+PgDown": ("scroll_columns", 1),
-    "Ctrl+Space": "complete",
-}
 
 
 class _Diagnostic(NamedTuple):
@@ -85,7 +67,7 @@ class _Diagnostic(NamedTuple):
     message: str
 
 
-class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, BookmarkMixin, QPlainTextEdit):
+class CodeEditor(QPlainTextEdit):
     cursorLineColChanged = Signal(int, int)  # 1-based line and column for the status bar (ide-spec 1.5)
     bookmarksChanged = Signal()
     macroRecordingChanged = Signal(bool)
@@ -98,15 +80,12 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
         self.settings = settings or EditorSettings()
         self.file_path: Path | None = None
         self._diagnostics: list[_Diagnostic] = []
-        self._repeat_count = 0
-        self._recording: list[KeyStroke] | None = None
-        self._last_macro: list[KeyStroke] = []
-        self._playing = False
-        self._pending_chord: str | None = None
-        self.macros = MacroSlots()
-        self._find_dialog = None
-        self.macro_dialog = None
-        self._files_dialog = None
+        self.macros = MacroSlots()  # the saved macros: the application keeps them across restarts
+        self.edit = Editing(self)
+        self.search = Searching(self)
+        self.recorder = MacroRecorder(self)
+        self.debug = DebugMarks(self)
+        self.bookmarks = Bookmarks(self)
         self._layout = install_line_layout(self)  # a keystroke repaints its line, not the whole view
         self.setLineWrapMode(QPlainTextEdit.LineWrapMode.NoWrap)
         self.setMouseTracking(True)
@@ -159,7 +138,7 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
         if self.highlighter.colors != settings.colors:
             self.highlighter.set_colors(settings.colors)
         self._update_gutter_width()
-        self._update_extra_selections()
+        self.update_extra_selections()
         self.gutter.update()
 
     # --- margin ----------------------------------------------------------------------------------------
@@ -194,8 +173,14 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
         cr = self.contentsRect()
         self.gutter.setGeometry(QRect(cr.left(), cr.top(), self.gutter.area_width(), cr.height()))
 
+    def goto_line(self, line: int, *, col: int = 1) -> None:
+        self.edit.goto_line(line, col=col)  # kept here: the window, the parts and many tests go to lines
+
+    def caret_line_col(self) -> tuple[int, int]:
+        return self.edit.caret_line_col()
+
     def _caret_moved(self) -> None:
-        self._update_extra_selections(force=False)
+        self.update_extra_selections(force=False)
         line, col = self.caret_line_col()
         self.cursorLineColChanged.emit(line, col)
 
@@ -228,7 +213,7 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
             cursor.setPosition(block.position() + start)
             cursor.setPosition(block.position() + end, QTextCursor.MoveMode.KeepAnchor)
             self._diagnostics.append(_Diagnostic(cursor, d.severity, d.message))
-        self._update_extra_selections()
+        self.update_extra_selections()
         self.gutter.update()
         errors = [(line, col) for line, col, severity, _ in self.diagnostics() if severity == "error"]
         if goto_first and errors:
@@ -252,7 +237,7 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
                 marks[number] = d.severity
         return marks
 
-    def _update_extra_selections(self, *, force: bool = True) -> None:
+    def update_extra_selections(self, *, force: bool = True) -> None:
         """Current-line band and diagnostic squiggles. Setting them repaints the whole view, so a caret move
         within the same line (typing) skips it unless `force`."""
         block_number = self.textCursor().blockNumber()
@@ -265,7 +250,7 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
         line.format.setProperty(QTextFormat.Property.FullWidthSelection, True)
         line.cursor = QTextCursor(self.textCursor().block())
         selections.append(line)
-        debug = self.debug_selection()
+        debug = self.debug.debug_selection()
         if debug is not None:
             selections.append(debug)
         for d in self._diagnostics:
@@ -416,12 +401,13 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
     # --- keys ------------------------------------------------------------------------------------------
     def key_bindings(self) -> dict[str, str]:
         """The editor's own keys: shortcut (portable text) → what it does ("F2" → "next bookmark")."""
-        return {k: (v if isinstance(v, str) else v[0]).replace("_", " ") for k, v in self._keymap.items()}
+        return {k: (v if isinstance(v, str) else v[0]).rsplit(".", 1)[-1].replace("_", " ")
+                for k, v in self._keymap.items()}
 
     def event(self, event: QEvent) -> bool:
         if event.type() == QEvent.Type.ShortcutOverride and isinstance(event, QKeyEvent):
             combo = combination(event)
-            if combo in self._keymap or combo in self.macros.first_keys() or self._pending_chord:
+            if combo in self._keymap or combo in self.macros.first_keys() or self.recorder.pending_chord:
                 event.accept()
                 return True
         return super().event(event)
@@ -458,11 +444,10 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
             super().keyPressEvent(event)
             return
         combo = combination(event)
-        if self._recording is not None and not self._playing and combo != RECORD_SHORTCUT:
-            self._recording.append(KeyStroke.from_event(event))
-        if self._macro_shortcut(combo):
+        self.recorder.note(event, combo)
+        if self.recorder.take_shortcut(combo):
             return
-        count, self._repeat_count = max(1, self._repeat_count), 0
+        count, self.edit.repeat_count = max(1, self.edit.repeat_count), 0
         for _ in range(count):
             self._handle_key(event, combo)
 
@@ -472,28 +457,28 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
         name, *args = (action,) if isinstance(action, str | None) else action
         options = args.pop() if args and isinstance(args[-1], dict) else {}
         if self.isReadOnly():  # only moving, selecting, copying, finding and bookmarks
-            if name is not None and name not in _EDITING:
-                getattr(self, name)(*args, **options)
+            if name is not None and name not in EDITING:
+                operator.attrgetter(name)(self)(*args, **options)
             elif name is None:
                 super().keyPressEvent(event)
             return
         if name is not None:
-            getattr(self, name)(*args, **options)
+            operator.attrgetter(name)(self)(*args, **options)  # "edit.cut_line": the part's method
             return
         cursor = self.textCursor()
         if key == Qt.Key.Key_Tab and not event.modifiers() & ~Qt.KeyboardModifier.KeypadModifier:
-            multi = cursor.hasSelection() and self._selected_block_range()[0] != self._selected_block_range()[1]
-            self.indent_selection() if multi else self.insert_tab()
+            first, last = self.edit.selected_block_range()
+            self.edit.indent_selection() if cursor.hasSelection() and first != last else self.edit.insert_tab()
             return
         if key == Qt.Key.Key_Backtab:
-            self.unindent_selection()
+            self.edit.unindent_selection()
             return
         if key in (Qt.Key.Key_Return, Qt.Key.Key_Enter) and not event.modifiers() & ~(
                 Qt.KeyboardModifier.KeypadModifier | Qt.KeyboardModifier.ShiftModifier):
             self._new_line()
             return
         super().keyPressEvent(event)
-        if self._playing:
+        if self.recorder.playing:
             return
         text = event.text()
         if text and (text.isalnum() or text == "_") or (key == Qt.Key.Key_Backspace and self._completer.popup()
@@ -509,15 +494,15 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
         text = block.text()
         at_start = cursor.positionInBlock() == 0 and not cursor.hasSelection()
         indent = "" if at_start else text[: len(text) - len(text.lstrip(" \t"))][: cursor.positionInBlock()]
-        moved = at_start and self.has_bookmark(block)
+        moved = at_start and self.bookmarks.has_bookmark(block)
         cursor.beginEditBlock()
         cursor.insertBlock()
         cursor.insertText(indent)
         cursor.endEditBlock()
         if moved:
-            self._set_bookmark(block, False)
-            self._set_bookmark(cursor.block(), True)
-            self._bookmarks_changed()
+            self.bookmarks.set_bookmark(block, False)
+            self.bookmarks.set_bookmark(cursor.block(), True)
+            self.bookmarks.changed()
         self.setTextCursor(cursor)
         self.ensureCursorVisible()
 
@@ -530,11 +515,11 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
             return
         self._completer.popup().hide()
         super().mousePressEvent(event)
-        self.debug_mouse_press(event)
+        self.debug.debug_mouse_press(event)
 
     def mouseMoveEvent(self, event: QMouseEvent) -> None:  # noqa: N802 (Qt override)
         super().mouseMoveEvent(event)
-        self.debug_mouse_move(event)
+        self.debug.debug_mouse_move(event)
 
     def mouseDoubleClickEvent(self, event: QMouseEvent) -> None:  # noqa: N802 (Qt override)
         if event.button() == Qt.MouseButton.MiddleButton:  # wheel double-click selects the line
@@ -543,7 +528,7 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
             cursor.movePosition(QTextCursor.MoveOperation.EndOfBlock, QTextCursor.MoveMode.KeepAnchor)
             self.setTextCursor(cursor)
             return
-        if self.debug_double_click(event):
+        if self.debug.debug_double_click(event):
             return
         super().mouseDoubleClickEvent(event)
 
@@ -559,13 +544,13 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
         entries = [
             ("Undo", "Ctrl+Z", self.undo, doc.isUndoAvailable()), ("Cut", "Ctrl+X", self.cut, has_sel),
             ("Copy", "Ctrl+C", self.copy, has_sel), ("Paste", "Ctrl+V", self.paste, self.canPaste()), None,
-            ("Find...", "Ctrl+F", self.show_find_dialog, True),
-            ("Replace...", "Ctrl+R", self.show_replace_dialog, True),
-            ("Find in Files...", "", self.show_find_in_files, True), None,
-            ("Next Bookmark", "F2", self.next_bookmark, True),
-            ("Previous Bookmark", "Shift+F2", self.previous_bookmark, True),
-            ("Toggle Bookmark", "Ctrl+F2", self.toggle_bookmark, True),
-            ("Clear All Bookmarks", "", self.clear_bookmarks, True),
+            ("Find...", "Ctrl+F", self.search.show_find_dialog, True),
+            ("Replace...", "Ctrl+R", self.search.show_replace_dialog, True),
+            ("Find in Files...", "", self.search.show_find_in_files, True), None,
+            ("Next Bookmark", "F2", self.bookmarks.next_bookmark, True),
+            ("Previous Bookmark", "Shift+F2", self.bookmarks.previous_bookmark, True),
+            ("Toggle Bookmark", "Ctrl+F2", self.bookmarks.toggle_bookmark, True),
+            ("Clear All Bookmarks", "", self.bookmarks.clear_bookmarks, True),
         ]
         for entry in entries:
             if entry is None:
@@ -579,8 +564,9 @@ class CodeEditor(EditingMixin, SearchMixin, MacroMixin, DebugMarksMixin, Bookmar
 
     def contextMenuEvent(self, event: QContextMenuEvent) -> None:  # noqa: N802 (Qt override)
         menu = self.build_context_menu()
-        name = self.variable_at(event.pos()) if self.variable_value is not None else None
-        if name and self.variable_value(name) is not None:
+        value = self.debug.variable_value
+        name = self.debug.variable_at(event.pos()) if value is not None else None
+        if name and value is not None and value(name) is not None:
             menu.insertSeparator(menu.actions()[0])
             action = menu.addAction(f"Change value of {name}...")
             menu.insertAction(menu.actions()[0], action)

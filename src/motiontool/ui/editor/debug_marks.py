@@ -3,17 +3,22 @@ statement, red dots for breakpoints, the next statement to run in yellow, variab
 
 Breakpoints live on the text blocks (like bookmarks) so they move with the lines when the program is edited
 between debug runs; they are kept after End Debug (DG L3390-3392).  The editor knows nothing about the
-controller: the debug session gives it the executable lines and a `variable_value` callback.
+controller: the debug session gives it the executable lines and a `variable_value` callback. A part of the
+CodeEditor, ``editor.debug``, which declares the signals breakpointsChanged and variableEditRequested.
 """
 
 from __future__ import annotations
 
 import re
 from collections.abc import Callable, Iterable
+from typing import TYPE_CHECKING
 
 from PySide6.QtCore import QPoint, Qt
 from PySide6.QtGui import QColor, QTextBlock, QTextBlockUserData, QTextCursor, QTextFormat
 from PySide6.QtWidgets import QApplication, QLabel, QTextEdit, QToolTip, QWidget
+
+if TYPE_CHECKING:
+    from motiontool.ui.editor.code_editor import CodeEditor
 
 MAX_BREAKPOINTS = 10  # DG L3414, L3430
 DOT_BLUE, DOT_RED, NEXT_STATEMENT = "#2a6fdb", "#d62828", "#fff36b"
@@ -72,13 +77,15 @@ def block_data(block: QTextBlock, create: bool = False) -> BlockData | None:
     return data if isinstance(data, BlockData) else None
 
 
-class DebugMarksMixin:
-    """Mixed into CodeEditor, which declares the signals breakpointsChanged and variableEditRequested."""
+class DebugMarks:
+    """The debug marks of one CodeEditor; it reaches the editor only through ``self.editor``."""
 
-    debug_lines: frozenset[int] = frozenset()   # 1-based executable lines of the debug build; empty = no debug
-    debug_current: int | None = None            # 1-based line of the next statement to run
-    variable_value: Callable[[str], str | None] | None = None
-    value_popup: ValuePopup | None = None
+    def __init__(self, editor: CodeEditor) -> None:
+        self.editor = editor
+        self.debug_lines: frozenset[int] = frozenset()  # 1-based executable lines of the debug build; empty = none
+        self.debug_current: int | None = None           # 1-based line of the next statement to run
+        self.variable_value: Callable[[str], str | None] | None = None
+        self.value_popup: ValuePopup | None = None
 
     # --- state -----------------------------------------------------------------------------------------
     @property
@@ -89,7 +96,7 @@ class DebugMarksMixin:
         """Prepare Singlestep: blue dots on these lines; the buffer becomes read-only (decision in
         docs/decisions.md: editing during a debug session would put the IDE out of step with the controller)."""
         self.debug_lines = frozenset(lines)
-        self.setReadOnly(True)
+        self.editor.setReadOnly(True)
         self._debug_changed()
 
     def end_debug(self) -> None:
@@ -99,19 +106,19 @@ class DebugMarksMixin:
         self.debug_lines = frozenset()
         self.debug_current = None
         self.variable_value = None
-        self.setReadOnly(False)
+        self.editor.setReadOnly(False)
         self._debug_changed()
 
     def set_debug_current(self, line: int | None) -> None:
         if line != self.debug_current:
             self.debug_current = line
             if line is not None:
-                self.goto_line(line)
+                self.editor.goto_line(line)
             self._debug_changed()
 
     def _debug_changed(self) -> None:
-        self.gutter.update()
-        self._update_extra_selections()
+        self.editor.gutter.update()
+        self.editor.update_extra_selections()
 
     # --- breakpoints -----------------------------------------------------------------------------------
     @staticmethod
@@ -120,7 +127,7 @@ class DebugMarksMixin:
         return data is not None and data.breakpoint
 
     def breakpoints(self) -> list[int]:
-        lines, block = [], self.document().begin()
+        lines, block = [], self.editor.document().begin()
         while block.isValid():
             if self.has_breakpoint(block):
                 lines.append(block.blockNumber() + 1)
@@ -131,16 +138,16 @@ class DebugMarksMixin:
         """Toggle a breakpoint on an executable line; returns why it was refused, or None."""
         if line not in self.debug_lines:
             return f"line {line} has no executable statement: breakpoints go on lines with a blue dot"
-        block = self.document().findBlockByNumber(line - 1)
+        block = self.editor.document().findBlockByNumber(line - 1)
         on = not self.has_breakpoint(block)
         if on and len(self.breakpoints()) >= MAX_BREAKPOINTS:
             return f"at most {MAX_BREAKPOINTS} breakpoints can be set"
         block_data(block, create=True).breakpoint = on
-        self.gutter.update()
-        self.breakpointsChanged.emit()
+        self.editor.gutter.update()
+        self.editor.breakpointsChanged.emit()
         return None
 
-    # --- painting helpers (called by the gutter and _update_extra_selections) ---------------------------
+    # --- painting helpers (called by the gutter and update_extra_selections) ---------------------------
     def debug_dot(self, block: QTextBlock) -> str | None:
         """The colour of the dot in front of `block`, or None."""
         if self.has_breakpoint(block) and (not self.debugging or block.blockNumber() + 1 in self.debug_lines):
@@ -155,13 +162,13 @@ class DebugMarksMixin:
         sel = QTextEdit.ExtraSelection()
         sel.format.setBackground(QColor(NEXT_STATEMENT))
         sel.format.setProperty(QTextFormat.Property.FullWidthSelection, True)
-        sel.cursor = QTextCursor(self.document().findBlockByNumber(self.debug_current - 1))
+        sel.cursor = QTextCursor(self.editor.document().findBlockByNumber(self.debug_current - 1))
         return sel
 
     # --- variables (ide-spec 3.8, 3.9) -----------------------------------------------------------------
     def variable_at(self, pos: QPoint) -> str | None:
         """The variable or array element (`name` or `name[3]`) on or just after `pos`, if any."""
-        cursor = self.cursorForPosition(pos)
+        cursor = self.editor.cursorForPosition(pos)
         block, col = cursor.block(), cursor.positionInBlock()
         for m in _WORD.finditer(block.text()):
             if m.start() <= col <= m.end():
@@ -177,10 +184,10 @@ class DebugMarksMixin:
         if value is None:
             return False
         if self.value_popup is None:
-            self.value_popup = ValuePopup(self.viewport())
-        line_top = self.cursorRect(self.cursorForPosition(pos)).top()
-        self.value_popup.show_at(self.viewport().mapToGlobal(pos), f"{name} = {value}",
-                                 line_top=self.viewport().mapToGlobal(QPoint(0, line_top)).y())
+            self.value_popup = ValuePopup(self.editor.viewport())
+        line_top = self.editor.cursorRect(self.editor.cursorForPosition(pos)).top()
+        self.value_popup.show_at(self.editor.viewport().mapToGlobal(pos), f"{name} = {value}",
+                                 line_top=self.editor.viewport().mapToGlobal(QPoint(0, line_top)).y())
         return True
 
     def debug_mouse_move(self, event) -> None:
@@ -196,10 +203,11 @@ class DebugMarksMixin:
         """Double-clicking an executable statement toggles its breakpoint (DG L3408-3418)."""
         if not self.debugging or event.button() != Qt.MouseButton.LeftButton:
             return False
-        line = self.cursorForPosition(event.position().toPoint()).blockNumber() + 1
+        line = self.editor.cursorForPosition(event.position().toPoint()).blockNumber() + 1
         if line not in self.debug_lines:
             return False
         refused = self.toggle_breakpoint(line)
         if refused:
-            QToolTip.showText(self.viewport().mapToGlobal(event.position().toPoint()), refused, self.viewport())
+            view = self.editor.viewport()
+            QToolTip.showText(view.mapToGlobal(event.position().toPoint()), refused, view)
         return True

@@ -117,11 +117,11 @@ class FindReplaceDialog(QDialog):
     def open_for(self, *, replace: bool = False) -> None:
         """Show the dialog (as Find or as Replace) with the selected word as the search text."""
         self.set_replace_mode(replace)
-        word = self.editor.word_under_caret() if self.editor.textCursor().hasSelection() else ""
+        word = self.editor.search.word_under_caret() if self.editor.textCursor().hasSelection() else ""
         if word and "\u2029" not in word:
             self.find_edit.setText(word)
         elif not self.find_edit.text():
-            self.find_edit.setText(self.editor.search_text)
+            self.find_edit.setText(self.editor.search.search_text)
         self.show()
         self.raise_()
         self.activateWindow()
@@ -145,28 +145,28 @@ class FindReplaceDialog(QDialog):
             return None
 
     def find_next(self) -> bool:
-        found = self._run(lambda: self.editor.find(text=self.find_edit.text(), options=self.options()))
+        found = self._run(lambda: self.editor.search.find(text=self.find_edit.text(), options=self.options()))
         if found is False:
             self.status.setText(f"Cannot find \u201c{self.find_edit.text()}\u201d.")
-        elif found and self.editor.last_hit is not None and self.editor.last_hit.wrapped:
+        elif found and self.editor.search.last_hit is not None and self.editor.search.last_hit.wrapped:
             self.status.setText("Passed the end of the program; continued at the other end.")
         return bool(found)
 
     def mark_all(self) -> int:
-        count = self._run(lambda: self.editor.mark_all(self.find_edit.text(), options=self.options()))
+        count = self._run(lambda: self.editor.search.mark_all(self.find_edit.text(), options=self.options()))
         if count is not None:
             self.status.setText(f"{count} line(s) bookmarked; F2 walks through them.")
         return count or 0
 
     def replace(self) -> bool:
-        done = self._run(lambda: self.editor.replace(self.find_edit.text(), self.replace_edit.text(),
+        done = self._run(lambda: self.editor.search.replace(self.find_edit.text(), self.replace_edit.text(),
                                                      options=self.options()))
         if done is not None and not self.editor.textCursor().hasSelection():
             self.status.setText("No more occurrences.")
         return bool(done)
 
     def replace_all(self) -> int:
-        count = self._run(lambda: self.editor.replace_all(self.find_edit.text(), self.replace_edit.text(),
+        count = self._run(lambda: self.editor.search.replace_all(self.find_edit.text(), self.replace_edit.text(),
                                                           options=self.options()))
         if count is not None:
             self.status.setText(f"{count} replacement(s).")

@@ -78,10 +78,10 @@ class LineNumberArea(QWidget):
                     mark = self._error_mark if severity == "error" else self._warning_mark
                     mark(painter, y, line_h, QColor(getattr(colors, severity)))
                     painter.setPen(plain_pen)
-                if editor.has_bookmark(block):
+                if editor.bookmarks.has_bookmark(block):
                     self._bookmark_mark(painter, y, line_h, QColor(colors.bookmark))
                     painter.setPen(plain_pen)
-                dot = editor.debug_dot(block)
+                dot = editor.debug.debug_dot(block)
                 if dot is not None:  # blue: executable statement, red: breakpoint (ide-spec 3.1, 3.5)
                     self._dot(painter, y, line_h, QColor(dot))
                     painter.setPen(plain_pen)

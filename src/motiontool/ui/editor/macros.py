@@ -1,8 +1,8 @@
 """Keyboard macros (ide-spec 1.24-1.25): record key presses, replay them, keep up to 10 under shortcuts.
 
 Ctrl-Shift-R starts recording [DG L2206]; in the editor the same key stops it (the manual's "Record Macro"
-dialog with its stop button is left to the main window, which can call ``stop_recording``). Stopping from
-the keyboard opens the "Save Macro" dialog [DG L2208-2216]: press the new shortcut (up to two keystrokes),
+dialog with its stop button is left to the main window, which can call ``editor.recorder.stop_recording``).
+Stopping from the keyboard opens the "Save Macro" dialog [DG L2208-2216]: press the new shortcut (up to two keystrokes),
 see what it is currently assigned to, choose one of the 10 "Save As" slots. ``MacroSlots.to_json`` and
 ``from_json`` let the application keep the macros across restarts [DG L2204].
 """
@@ -10,7 +10,7 @@ see what it is currently assigned to, choose one of the 10 "Save As" slots. ``Ma
 from __future__ import annotations
 
 import json
-from typing import NamedTuple
+from typing import TYPE_CHECKING, NamedTuple
 
 from PySide6.QtCore import QEvent, Qt
 from PySide6.QtGui import QKeyEvent, QKeySequence
@@ -24,6 +24,9 @@ from PySide6.QtWidgets import (
     QVBoxLayout,
     QWidget,
 )
+
+if TYPE_CHECKING:
+    from motiontool.ui.editor.code_editor import CodeEditor
 
 MAX_MACROS = 10
 RECORD_SHORTCUT = "Ctrl+Shift+R"
@@ -176,8 +179,17 @@ class SaveMacroDialog(QDialog):
         super().accept()
 
 
-class MacroMixin:
-    """Recording and playing macros in the CodeEditor (``self``); keys arrive through its keyPressEvent."""
+class MacroRecorder:
+    """Recording and playing macros in one CodeEditor, ``editor.recorder``; keys arrive through the editor's
+    keyPressEvent (``note`` and ``take_shortcut``), the slots are the editor's ``macros``."""
+
+    def __init__(self, editor: CodeEditor) -> None:
+        self.editor = editor
+        self._recording: list[KeyStroke] | None = None
+        self._last_macro: list[KeyStroke] = []
+        self.playing = False
+        self.pending_chord: str | None = None  # the first key of a two-key macro shortcut, waiting for the second
+        self.macro_dialog: SaveMacroDialog | None = None
 
     @property
     def is_recording(self) -> bool:
@@ -188,10 +200,15 @@ class MacroMixin:
         """The most recently recorded macro (played by ``play_macro()`` without a shortcut)."""
         return list(self._last_macro)
 
+    def note(self, event: QKeyEvent, combo: str) -> None:
+        """A key press of the editor: recorded while recording, unless it is replayed or stops the recording."""
+        if self._recording is not None and not self.playing and combo != RECORD_SHORTCUT:
+            self._recording.append(KeyStroke.from_event(event))
+
     def start_recording(self) -> None:
         """Ctrl-Shift-R: start recording key presses."""
         self._recording = []
-        self.macroRecordingChanged.emit(True)
+        self.editor.macroRecordingChanged.emit(True)
 
     def stop_recording(self, *, shortcut: str | None = None) -> list[KeyStroke]:
         """End recording; the macro becomes the last macro and, with `shortcut`, is saved under it."""
@@ -200,8 +217,8 @@ class MacroMixin:
         keys, self._recording = self._recording, None
         self._last_macro = keys
         if shortcut:
-            self.macros.assign(shortcut, keys)
-        self.macroRecordingChanged.emit(False)
+            self.editor.macros.assign(shortcut, keys)
+        self.editor.macroRecordingChanged.emit(False)
         return keys
 
     def toggle_recording(self) -> None:
@@ -211,38 +228,41 @@ class MacroMixin:
             return
         keys = self.stop_recording()
         if keys:
-            self.macro_dialog = SaveMacroDialog(keys, self.macros, self.key_bindings(), self)
+            editor = self.editor
+            self.macro_dialog = SaveMacroDialog(keys, editor.macros, editor.key_bindings(), editor)
             self.macro_dialog.show()
 
     def play_macro(self, *, shortcut: str | None = None) -> bool:
         """Replay the macro saved under `shortcut` (default: the last recorded one); False if there is none."""
-        keys = self._last_macro if shortcut is None else self.macros.get(shortcut)
-        if not keys or self._playing:
+        keys = self._last_macro if shortcut is None else self.editor.macros.get(shortcut)
+        if not keys or self.playing:
             return False
-        self._playing = True
-        self._completer.popup().hide()
+        self.playing = True
+        self.editor.completer.popup().hide()
         try:
             for key in keys:
-                key.send(self)
+                key.send(self.editor)
         finally:
-            self._playing = False
+            self.playing = False
         return True
 
     def clear_macros(self) -> None:
         """Edit → Clear Macros (ide-spec 1.25)."""
-        self.macros.clear()
+        self.editor.macros.clear()
         self._last_macro = []
 
-    def _macro_shortcut(self, combo: str) -> bool:
-        if not len(self.macros) or self._playing:
+    def take_shortcut(self, combo: str) -> bool:
+        """True if the key press `combo` played a macro or began a two-key macro shortcut (the editor then
+        does nothing else with it)."""
+        macros = self.editor.macros
+        if not len(macros) or self.playing:
             return False
-        chord = f"{self._pending_chord}, {combo}" if self._pending_chord else combo
-        self._pending_chord = None
-        if chord in self.macros.shortcuts():
+        chord = f"{self.pending_chord}, {combo}" if self.pending_chord else combo
+        self.pending_chord = None
+        if chord in macros.shortcuts():
             self.play_macro(shortcut=chord)
             return True
-        if any(s.startswith(chord + ", ") for s in self.macros.shortcuts()):
-            self._pending_chord = chord
+        if any(s.startswith(chord + ", ") for s in macros.shortcuts()):
+            self.pending_chord = chord
             return True
         return False
-

@@ -1,6 +1,7 @@
 """Find, Replace and Mark All in a CodeEditor (ide-spec 1.17, 1.32-1.35), on top of the Qt-free ``search``.
 
-A mixin: ``self`` is the CodeEditor. The last search is remembered so F3 / Shift-F3 repeat it.
+A part of the CodeEditor, ``editor.search``: it reaches the editor only through ``self.editor``. The last
+search is remembered so F3 / Shift-F3 repeat it.
 """
 
 from __future__ import annotations
@@ -8,6 +9,7 @@ from __future__ import annotations
 import re
 from bisect import bisect_right
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from PySide6.QtGui import QTextCursor
 
@@ -16,20 +18,29 @@ from motiontool.ui.editor.find_dialog import FindInFilesDialog, FindReplaceDialo
 from motiontool.ui.editor.search import Hit, SearchOptions
 from motiontool.ui.editor.textops import Utf16Map
 
+if TYPE_CHECKING:
+    from motiontool.ui.editor.code_editor import CodeEditor
+
 _Keep = QTextCursor.MoveMode.KeepAnchor
 
 
-class SearchMixin:
-    search_text: str = ""
-    search_options: SearchOptions = SearchOptions()
-    last_hit: Hit | None = None  # the last find result (``wrapped`` tells the search passed an end)
+class Searching:
+    """Find, Replace, Mark All and the Find dialogs of one CodeEditor."""
+
+    def __init__(self, editor: CodeEditor) -> None:
+        self.editor = editor
+        self.search_text = ""
+        self.search_options = SearchOptions()
+        self.last_hit: Hit | None = None  # the last find result (``wrapped`` tells the search passed an end)
+        self.find_dialog: FindReplaceDialog | None = None
+        self.files_dialog: FindInFilesDialog | None = None
 
     def _select_range(self, umap: Utf16Map, start: int, end: int) -> None:
-        cursor = self.textCursor()
+        cursor = self.editor.textCursor()
         cursor.setPosition(umap.to_qt(start))
         cursor.setPosition(umap.to_qt(end), _Keep)
-        self.setTextCursor(cursor)
-        self.ensureCursorVisible()
+        self.editor.setTextCursor(cursor)
+        self.editor.ensureCursorVisible()
 
     def find(self, *, text: str | None = None, options: SearchOptions | None = None) -> bool:
         """Select the next hit of `text` (default: the last search) from the caret; PatternError if invalid.
@@ -43,9 +54,9 @@ class SearchMixin:
         if not self.search_text:
             return False
         rx = search.compile_search(self.search_text, self.search_options)
-        doc_text = self.toPlainText()
+        doc_text = self.editor.toPlainText()
         umap = Utf16Map(doc_text)
-        cursor = self.textCursor()
+        cursor = self.editor.textCursor()
         qt_pos = cursor.selectionStart() if self.search_options.backward else cursor.selectionEnd()
         hit = search.find(doc_text, rx, umap.from_qt(qt_pos), self.search_options)
         self.last_hit = hit
@@ -70,7 +81,7 @@ class SearchMixin:
         return self._find_directed(True)
 
     def word_under_caret(self) -> str:
-        cursor = self.textCursor()
+        cursor = self.editor.textCursor()
         if cursor.hasSelection():
             return cursor.selectedText()
         cursor.select(QTextCursor.SelectionType.WordUnderCursor)
@@ -81,14 +92,14 @@ class SearchMixin:
         word = self.word_under_caret().strip()
         if not word:
             return False
-        if not self.textCursor().hasSelection():  # start from the word itself, so it is skipped
-            cursor = self.textCursor()
+        if not self.editor.textCursor().hasSelection():  # start from the word itself, so it is skipped
+            cursor = self.editor.textCursor()
             cursor.select(QTextCursor.SelectionType.WordUnderCursor)
-            self.setTextCursor(cursor)
+            self.editor.setTextCursor(cursor)
         return self.find(text=word, options=SearchOptions("plain", False, True, backward, True))
 
     def _match_at_selection(self, rx: re.Pattern[str], doc_text: str, umap: Utf16Map) -> re.Match[str] | None:
-        cursor = self.textCursor()
+        cursor = self.editor.textCursor()
         if not cursor.hasSelection():
             return None
         start, end = umap.from_qt(cursor.selectionStart()), umap.from_qt(cursor.selectionEnd())
@@ -99,12 +110,12 @@ class SearchMixin:
         """Replace: if the selection is a hit, replace it; then select the next hit. True if one was replaced."""
         self.search_text, self.search_options = text, options or self.search_options
         rx = search.compile_search(text, self.search_options)
-        doc_text = self.toPlainText()
+        doc_text = self.editor.toPlainText()
         umap = Utf16Map(doc_text)
         m = self._match_at_selection(rx, doc_text, umap)
         replaced = False
         if m is not None:
-            self.textCursor().insertText(search.expand_replacement(m, replacement, self.search_options.mode))
+            self.editor.textCursor().insertText(search.expand_replacement(m, replacement, self.search_options.mode))
             replaced = True
         self.find()
         return replaced
@@ -114,16 +125,16 @@ class SearchMixin:
         """Replace every hit (in the whole text, or in the selection) as ONE undo step; the count."""
         opts = options or self.search_options
         self.search_text, self.search_options = text, opts
-        doc_text = self.toPlainText()
+        doc_text = self.editor.toPlainText()
         umap = Utf16Map(doc_text)
         lo, hi = 0, len(doc_text)
-        cursor = self.textCursor()
+        cursor = self.editor.textCursor()
         if in_selection and cursor.hasSelection():
             lo, hi = umap.from_qt(cursor.selectionStart()), umap.from_qt(cursor.selectionEnd())
         edits = [e for e in search.replacements(doc_text, text, replacement, opts) if lo <= e[0] and e[1] <= hi]
         if not edits:
             return 0
-        edit = QTextCursor(self.document())
+        edit = QTextCursor(self.editor.document())
         edit.beginEditBlock()
         for start, end, new in reversed(edits):  # from the end, so earlier positions stay valid
             edit.setPosition(umap.to_qt(start))
@@ -136,35 +147,36 @@ class SearchMixin:
         """Mark All: a bookmark on every line with a hit; F2 then walks through them [DG L2306]."""
         opts = options or self.search_options
         self.search_text, self.search_options = text, opts
-        doc_text = self.toPlainText()
+        doc_text = self.editor.toPlainText()
         hits = search.find_all(doc_text, text, opts)
         starts = [0] + [m.end() for m in re.finditer("\n", doc_text)]
         lines = sorted({bisect_right(starts, h.start) for h in hits})
-        self.set_bookmarks(sorted(set(self.bookmarks()) | set(lines)))
+        marks = self.editor.bookmarks
+        marks.set_bookmarks(sorted(set(marks.lines()) | set(lines)))
         return len(lines)
 
     def show_find_dialog(self, *, replace: bool = False) -> FindReplaceDialog:
         """Ctrl-F / Alt-F3 (Find), Ctrl-R (Replace): the non-modal FindReplaceDialog, with the selection."""
-        if self._find_dialog is None:
-            self._find_dialog = FindReplaceDialog(self)
-        self._find_dialog.open_for(replace=replace)
-        return self._find_dialog
+        if self.find_dialog is None:
+            self.find_dialog = FindReplaceDialog(self.editor)
+        self.find_dialog.open_for(replace=replace)
+        return self.find_dialog
 
     def show_replace_dialog(self) -> FindReplaceDialog:
         return self.show_find_dialog(replace=True)
 
     def show_find_in_files(self) -> FindInFilesDialog:
         """Edit → Find in Files: search the saved files beside the program (ide-spec 1.36)."""
-        if self._files_dialog is None:
-            root = self.file_path.parent if self.file_path else Path.cwd()
-            self._files_dialog = FindInFilesDialog(root, self)
-            self._files_dialog.locationActivated.connect(self._open_location)
-        self._files_dialog.open_for(text=self.word_under_caret())
-        return self._files_dialog
+        if self.files_dialog is None:
+            root = self.editor.file_path.parent if self.editor.file_path else Path.cwd()
+            self.files_dialog = FindInFilesDialog(root, self.editor)
+            self.files_dialog.locationActivated.connect(self._open_location)
+        self.files_dialog.open_for(text=self.word_under_caret())
+        return self.files_dialog
 
     def _open_location(self, path: str, line: int, col: int) -> None:
-        if self.file_path is not None and Path(path).resolve() == self.file_path.resolve():
-            self.goto_line(line, col=col)
-            self.setFocus()
+        if self.editor.file_path is not None and Path(path).resolve() == self.editor.file_path.resolve():
+            self.editor.goto_line(line, col=col)
+            self.editor.setFocus()
         else:
-            self.openLocationRequested.emit(path, line, col)
+            self.editor.openLocationRequested.emit(path, line, col)
