@@ -25,9 +25,15 @@ class Prompts(Protocol):
         """A Yes/No question; True for Yes."""
         ...
 
-    def choose(self, title: str, text: str, choices: Sequence[str], *, detail: str = "",
-               warning: bool = False) -> str | None:
-        """One of `choices` (the first is the default) or None for Cancel."""
+    def choose(self, title: str, text: str, choices: Sequence[str], *, detail: str = "", warning: bool = False,
+               cancel: str = "Cancel", destructive: bool = False) -> str | None:
+        """One of `choices` (the first is the default) or None for the `cancel` button ("Cancel" or "Close").
+        `destructive`: the choices cannot be undone, so they stand apart and Cancel is the default."""
+        ...
+
+    def decide(self, title: str, text: str, *, yes: str, no: str, cancel: str, detail: str = "") -> bool | None:
+        """A Yes/No/Cancel question whose buttons say what they do: True for `yes` (the default), False for `no`,
+        None for `cancel`."""
         ...
 
     def save_changes(self, title: str, text: str) -> str | None:
@@ -46,7 +52,8 @@ class Prompts(Protocol):
     def open_path(self, title: str, directory: str, filters: str) -> Path | None:
         ...
 
-    def warn(self, title: str, text: str) -> None:
+    def warn(self, title: str, text: str, *, detail: str = "", critical: bool = False) -> None:
+        """`critical`: something failed (a file not written), rather than a caution."""
         ...
 
     def inform(self, title: str, text: str) -> None:
@@ -84,12 +91,16 @@ class ScriptedPrompts:
     def confirm(self, title: str, text: str) -> bool:
         return bool(self._answer("confirm", title, text))
 
-    def choose(self, title: str, text: str, choices: Sequence[str], *, detail: str = "",
-               warning: bool = False) -> str | None:
+    def choose(self, title: str, text: str, choices: Sequence[str], *, detail: str = "", warning: bool = False,
+               cancel: str = "Cancel", destructive: bool = False) -> str | None:
         answer = self._answer("choose", title, text)
         if answer is not None and answer not in choices:
             raise PromptRefused(f"{answer!r} is not one of {list(choices)} for {title!r}")
         return answer
+
+    def decide(self, title: str, text: str, *, yes: str, no: str, cancel: str, detail: str = "") -> bool | None:
+        answer = self._answer("decide", title, text)
+        return None if answer is None else bool(answer)
 
     def save_changes(self, title: str, text: str) -> str | None:
         return self._answer("save_changes", title, text)
@@ -108,7 +119,7 @@ class ScriptedPrompts:
         answer = self._answer("open_path", title, directory)
         return None if answer is None else Path(answer)
 
-    def warn(self, title: str, text: str) -> None:
+    def warn(self, title: str, text: str, *, detail: str = "", critical: bool = False) -> None:
         self.asked.append(("warn", title, text))
 
     def inform(self, title: str, text: str) -> None:

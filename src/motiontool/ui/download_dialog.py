@@ -17,12 +17,10 @@ from PySide6.QtWidgets import (
     QApplication,
     QCheckBox,
     QDialog,
-    QFileDialog,
     QFormLayout,
     QHBoxLayout,
     QLabel,
     QLineEdit,
-    QMessageBox,
     QPlainTextEdit,
     QPushButton,
     QVBoxLayout,
@@ -105,12 +103,11 @@ class DownloadDialog(QDialog):
 
     # --- helpers ---------------------------------------------------------------------------------------------
     def browse(self) -> None:
-        chosen, _ = QFileDialog.getOpenFileName(self, "Program to download", self.file.text(),
-                                                "APOSS programs (*.m)")
-        if chosen:
-            self.file.setText(chosen)
+        chosen = self.w.prompts.within(self).open_path("Program to download", self.file.text(), "APOSS programs (*.m)")
+        if chosen is not None:
+            self.file.setText(str(chosen))
             if not self.name.text():
-                self.name.setText(Path(chosen).stem[:8].upper())
+                self.name.setText(chosen.stem[:8].upper())
 
     def say(self, text: str) -> None:
         self.log.appendPlainText(text)
@@ -125,10 +122,10 @@ class DownloadDialog(QDialog):
         atomic_write_text(path, self.log.toPlainText() + "\n")
 
     def save_log_dialog(self) -> bool:
-        chosen, _ = QFileDialog.getSaveFileName(self, "Save Log", "download.log", "Log files (*.log *.txt)")
-        if chosen:
-            self.save_log(Path(chosen))
-        return bool(chosen)
+        chosen = self.w.prompts.within(self).save_path("Save Log", "download.log", "Log files (*.log *.txt)")
+        if chosen is not None:
+            self.save_log(chosen)
+        return chosen is not None
 
     # --- processing --------------------------------------------------------------------------------------------
     def start(self) -> bool:
@@ -196,14 +193,10 @@ class DownloadDialog(QDialog):
                 stored.append(f"Controller {cid}: {names}")
         if not stored:
             return True
-        box = QMessageBox(QMessageBox.Icon.Warning, "Download all",
-                          f"Download deletes all programs stored on the controllers before it saves \"{name}\" "
-                          "as program 0:", QMessageBox.StandardButton.Cancel, self)
-        box.setInformativeText("\n".join(stored))
-        delete = box.addButton("Delete and Download", QMessageBox.ButtonRole.DestructiveRole)
-        box.setDefaultButton(QMessageBox.StandardButton.Cancel)
-        box.exec()
-        return box.clickedButton() is delete
+        return self.w.prompts.within(self).choose(
+            "Download all", f"Download deletes all programs stored on the controllers before it saves \"{name}\" "
+            "as program 0:", ["Delete and Download"], detail="\n".join(stored), warning=True,
+            destructive=True) is not None
 
     def process(self, cid: int, image: bytes, name: str) -> bool:
         opt = {key: box.isChecked() for key, box in self.options.items()}

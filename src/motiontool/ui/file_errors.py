@@ -5,14 +5,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from PySide6.QtWidgets import QMessageBox, QWidget
-
 from motiontool.fileio import reason
 
 
-def save_failed(parent: QWidget | None, title: str, path: Path | str, exc: OSError, kept: str) -> None:
-    """``kept``: a sentence on what the user still has, e.g. "The program is still open in the editor"."""
-    box = QMessageBox(QMessageBox.Icon.Critical, title, f"Cannot write {path}:\n{reason(exc)}.",
-                      QMessageBox.StandardButton.Ok, parent)
-    box.setInformativeText(kept)
-    box.exec()
+def save_failed(w, title: str, path: Path | str, exc: OSError, kept: str) -> None:
+    """Said through the window `w`'s prompts, over it. ``kept``: a sentence on what the user still has, e.g.
+    "The program is still open in the editor"."""
+    w.prompts.warn(title, f"Cannot write {path}:\n{reason(exc)}.", detail=kept, critical=True)

@@ -13,7 +13,7 @@ from __future__ import annotations
 import re
 
 from PySide6.QtCore import QObject, Qt
-from PySide6.QtWidgets import QMessageBox, QToolButton
+from PySide6.QtWidgets import QToolButton
 
 from motiontool.comms.client import ErrorRecord
 from motiontool.ui.link_jobs import LinkJobs
@@ -129,9 +129,9 @@ class PendingError(QObject):
         link, cid = self._link(), self.w.bridge.controller_id
         if link is None:
             return
-        if ask and QMessageBox.question(
-                self.w, "Restart", f"Switch controller {cid} off and on? The program stops and the pending error "
-                "is cleared; stored programs, parameters and arrays are kept.") != QMessageBox.StandardButton.Yes:
+        if ask and not self.w.prompts.confirm(
+                "Restart", f"Switch controller {cid} off and on? The program stops and the pending error "
+                "is cleared; stored programs, parameters and arrays are kept."):
             return
         self.jobs.run(lambda: link.power_on(),
                       lambda result, *, c=cid: self._done(c, result, "restarted (switched off and on)"))
@@ -150,25 +150,19 @@ class PendingError(QObject):
         status = self.w.bridge.last_status
         number = status.error if status is not None else 0
         known = self.known.get((cid, number), {})
-        box = QMessageBox(QMessageBox.Icon.Warning, "Controller error",
-                          f"Controller {cid}: error {number}" + (f": {known['text']}" if known else ""), parent=self.w)
         info = [f"Line {known['line']} of the program." if known.get("line") else "",
                 known.get("detail", ""), HINTS.get(number, "")]
-        box.setInformativeText("\n\n".join(i[:1].upper() + i[1:] for i in info if i))
-        clear = box.addButton("Clear Error", QMessageBox.ButtonRole.AcceptRole)
-        arrays = box.addButton("Reset Arrays and Clear Error", QMessageBox.ButtonRole.ActionRole) \
-            if number in ARRAY_ERRORS else None
-        restart = box.addButton("Restart Controller", QMessageBox.ButtonRole.ActionRole)
-        box.addButton(QMessageBox.StandardButton.Close)
-        box.exec()
-        chosen = box.clickedButton()
-        if chosen is clear:
+        choices = ["Clear Error"] + (["Reset Arrays and Clear Error"] if number in ARRAY_ERRORS else []) \
+            + ["Restart Controller"]
+        chosen = self.w.prompts.choose(
+            "Controller error", f"Controller {cid}: error {number}" + (f": {known['text']}" if known else ""),
+            choices, detail="\n\n".join(i[:1].upper() + i[1:] for i in info if i), warning=True, cancel="Close")
+        if chosen == "Clear Error":
             self.clear()
-        elif arrays is not None and chosen is arrays:
+        elif chosen == "Reset Arrays and Clear Error":
             self.reset_arrays_and_clear()
-        elif chosen is restart:
+        elif chosen == "Restart Controller":
             self.restart(ask=False)
-        box.deleteLater()
 
 
 def _plain(text: str, number: int) -> str:

@@ -18,7 +18,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from PySide6.QtCore import QElapsedTimer, QObject, QTimer
-from PySide6.QtWidgets import QMessageBox
 
 from motiontool.fileio import MiB, atomic_write_text, read_text
 
@@ -226,19 +225,13 @@ def offer_recovery(window) -> int:
         return 0
     names = ", ".join(Path(b.original).name if b.original else "an unsaved program" for b in buffers[:5])
     more = f" and {len(buffers) - 5} more" if len(buffers) > 5 else ""
-    box = QMessageBox(QMessageBox.Icon.Question, "Recovery",
-                      f"motiontool was not closed properly. {len(buffers)} program(s) had unsaved changes: "
-                      f"{names}{more}.", QMessageBox.StandardButton.Yes | QMessageBox.StandardButton.No
-                      | QMessageBox.StandardButton.Cancel, window)
-    box.setInformativeText("Restore them? Discard deletes the copies; Not now keeps them for the next start.")
-    box.button(QMessageBox.StandardButton.Yes).setText("Restore")
-    box.button(QMessageBox.StandardButton.No).setText("Discard")
-    box.button(QMessageBox.StandardButton.Cancel).setText("Not now")
-    box.setDefaultButton(QMessageBox.StandardButton.Yes)
-    answer = box.exec()
-    if answer == QMessageBox.StandardButton.Yes:
+    answer = window.prompts.decide(
+        "Recovery", f"motiontool was not closed properly. {len(buffers)} program(s) had unsaved changes: "
+        f"{names}{more}.", yes="Restore", no="Discard", cancel="Not now",
+        detail="Restore them? Discard deletes the copies; Not now keeps them for the next start.")
+    if answer:
         return window.recover()
-    window.recovery.forget_abandoned(delete=answer == QMessageBox.StandardButton.No)
+    window.recovery.forget_abandoned(delete=answer is False)
     return 0
 
 
