@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from PySide6.QtWidgets import QFileDialog, QHBoxLayout, QLabel, QPushButton
+from PySide6.QtWidgets import QHBoxLayout, QLabel, QPushButton
 
 from motiontool.apc.parameter_menus import MENUS, ApcParam, checked, dump, load
 from motiontool.fileio import MiB, atomic_write_text, read_text, reason, write_error
@@ -140,12 +140,12 @@ class ApcParametersDialog(ParameterPages):
         return True
 
     def save_dialog(self) -> bool:
-        path, _ = QFileDialog.getSaveFileName(self, "Save APC parameters", "apc.apcpar", FILTER)
-        return bool(path) and self.save_to(path)
+        path = self.w.prompts.within(self).save_path("Save APC parameters", "apc.apcpar", FILTER)
+        return path is not None and self.save_to(path)
 
     def restore_dialog(self) -> bool:
-        path, _ = QFileDialog.getOpenFileName(self, "Restore APC parameters", "", FILTER)
-        return bool(path) and self.restore_from(path)
+        path = self.w.prompts.within(self).open_path("Restore APC parameters", "", FILTER)
+        return path is not None and self.restore_from(path)
 
 
 def show_apc_parameters(w) -> None:

@@ -11,11 +11,8 @@ from PySide6.QtWidgets import (
     QComboBox,
     QDialog,
     QDialogButtonBox,
-    QFileDialog,
     QFormLayout,
     QHBoxLayout,
-    QInputDialog,
-    QMessageBox,
     QPushButton,
     QTableWidget,
     QTableWidgetItem,
@@ -79,11 +76,9 @@ def save_parameters(w, path: Path | None = None) -> bool:
     if link is None:
         return False
     if path is None:
-        chosen, _ = QFileDialog.getSaveFileName(w, "Save to file", "controller.zbc",
-                                                "Configuration (*.zbc *.cnf)")
-        if not chosen:
+        path = w.prompts.save_path("Save to file", "controller.zbc", "Configuration (*.zbc *.cnf)")
+        if path is None:
             return False
-        path = Path(chosen)
     transfer, zbc = _config_io()
     try:
         config = waiting(w, f"Controller {w.bridge.controller_id}: reading its configuration …",
@@ -134,10 +129,9 @@ def restore_parameters(w, path: Path | None = None, controller_id: int | None = 
                        sets: tuple[str, ...] | None = None) -> bool:
     """Parameters → Restore from file: an Open dialog, then the target controller and the sets."""
     if path is None:
-        chosen, _ = QFileDialog.getOpenFileName(w, "Restore from file", "", "Configuration (*.zbc *.cnf)")
-        if not chosen:
+        path = w.prompts.open_path("Restore from file", "", "Configuration (*.zbc *.cnf)")
+        if path is None:
             return False
-        path = Path(chosen)
     transfer, zbc = _config_io()
     try:
         config = zbc.read_config(path)
@@ -165,8 +159,7 @@ def reset(w, what: str, ask: bool = True) -> bool:
     link = _link(w)
     if link is None:
         return False
-    if ask and QMessageBox.question(w, f"Reset {title}", f"Reset {title}: {effect}. Continue?") \
-            != QMessageBox.StandardButton.Yes:
+    if ask and not w.prompts.confirm(f"Reset {title}", f"Reset {title}: {effect}. Continue?"):
         return False
     try:
         waiting(w, f"Controller {w.bridge.controller_id}: reset {title.lower()} …", lambda: link.reset(what))
@@ -183,7 +176,7 @@ def memory(w, what: str, *, ask: bool = True) -> bool:
     link = _link(w)
     if link is None:
         return False
-    if ask and QMessageBox.question(w, title, f"{title}: {effect}. Continue?") != QMessageBox.StandardButton.Yes:
+    if ask and not w.prompts.confirm(title, f"{title}: {effect}. Continue?"):
         return False
     try:
         waiting(w, f"Controller {w.bridge.controller_id}: {title} …",
@@ -287,17 +280,16 @@ class ProgramsDialog(QDialog):
         return True
 
     def save(self) -> bool:
-        name, ok = QInputDialog.getText(self, "Save", "Program name (8 characters):",
-                                        text=self._default_name())
-        return ok and self.store(name=name)
+        name = self.w.prompts.within(self).text("Save", "Program name (8 characters):", default=self._default_name())
+        return name is not None and self.store(name=name)
 
     def save_as(self) -> bool:
-        name, ok = QInputDialog.getText(self, "Save as", "Program name (8 characters):",
-                                        text=self._default_name())
-        if not ok:
+        prompts = self.w.prompts.within(self)
+        name = prompts.text("Save as", "Program name (8 characters):", default=self._default_name())
+        if name is None:
             return False
-        number, ok = QInputDialog.getInt(self, "Save as", "Program number (0-90):", 0, 0, 90)
-        return ok and self.store(number=number, name=name)
+        number = prompts.integer("Save as", "Program number (0-90):", 0, 0, 90)
+        return number is not None and self.store(number=number, name=name)
 
     def _default_name(self) -> str:
         """DG 2655: "confirm the file name suggested": the program's file name (a sample's, an unsaved one's tab
@@ -332,10 +324,10 @@ class ProgramsDialog(QDialog):
         stamp = stored.stored_at.replace(":", "").replace("-", "").replace(" ", "_")
         suggested = f"{main.stem}_{stamp}{main.suffix or '.m'}"
         if folder is None:
-            chosen, _ = QFileDialog.getSaveFileName(self, "Upload program", suggested, "APOSS programs (*.m)")
-            if not chosen:
+            chosen = self.w.prompts.within(self).save_path("Upload program", suggested, "APOSS programs (*.m)")
+            if chosen is None:
                 return None
-            target = Path(chosen)
+            target = chosen
         else:
             target = Path(folder) / suggested
         from motiontool.fileio import atomic_write_text
@@ -429,10 +421,9 @@ def diagnostic_report(w, path: Path | None = None) -> bool:
     if link is None:
         return False
     if path is None:
-        chosen, _ = QFileDialog.getSaveFileName(w, "Diagnostic Report", "diagnostic-report.txt", "Text (*.txt)")
-        if not chosen:
+        path = w.prompts.save_path("Diagnostic Report", "diagnostic-report.txt", "Text (*.txt)")
+        if path is None:
             return False
-        path = Path(chosen)
     from motiontool.fileio import atomic_write_text
 
     zbc = _config_io()[1]

@@ -7,7 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from PySide6.QtCore import Qt
-from PySide6.QtWidgets import QFileDialog, QMessageBox, QWidget
+from PySide6.QtWidgets import QWidget
 
 from motiontool.ui import tool_windows
 
@@ -18,8 +18,8 @@ OPEN_FILTER = ("motiontool files (*.m *.dpl *.zbc *.cnf *.zbo *.zba *.txt);;APOS
 
 def open_dialog(w) -> QWidget | None:
     """File → Open: any file the IDE knows, each into its window."""
-    chosen, _ = QFileDialog.getOpenFileName(w, "Open", "", OPEN_FILTER)
-    return open_document(w, Path(chosen)) if chosen else None
+    chosen = w.prompts.open_path("Open", "", OPEN_FILTER)
+    return open_document(w, chosen) if chosen is not None else None
 
 
 def open_document(w, path: Path) -> QWidget | None:
@@ -45,7 +45,7 @@ def open_document(w, path: Path) -> QWidget | None:
     except (OSError, ValueError) as exc:
         text = f"{path}: {exc.strerror if isinstance(exc, OSError) and exc.strerror else exc}"
         w.messages.ide(f"Open: {text}")
-        QMessageBox.warning(w, "Open", text)
+        w.prompts.warn("Open", text)
         return None
 
 

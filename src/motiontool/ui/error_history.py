@@ -15,7 +15,6 @@ from pathlib import Path
 from PySide6.QtWidgets import (
     QAbstractItemView,
     QDialog,
-    QFileDialog,
     QHBoxLayout,
     QLabel,
     QPushButton,
@@ -136,11 +135,11 @@ class ErrorHistoryDialog(QDialog):
         atomic_write_text(path, "\n".join(lines) + "\n")
 
     def write_dialog(self) -> bool:
-        chosen, _ = QFileDialog.getSaveFileName(self, "Write error history", "errors.txt", "Text (*.txt)")
-        if not chosen:
+        chosen = self.w.prompts.within(self).save_path("Write error history", "errors.txt", "Text (*.txt)")
+        if chosen is None:
             return False
         try:
-            self.write(Path(chosen))
+            self.write(chosen)
         except OSError as exc:
             self.header.setText(f"Not written: {chosen}: {exc.strerror or exc}")
             return False

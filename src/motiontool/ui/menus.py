@@ -7,7 +7,7 @@ import operator
 from pathlib import Path
 
 from PySide6.QtGui import QKeySequence
-from PySide6.QtWidgets import QFileDialog, QMenu
+from PySide6.QtWidgets import QMenu
 
 from motiontool.resources import resources_path
 from motiontool.ui import controller_menu as cm
@@ -173,10 +173,10 @@ def _messages_menu(w, menu: QMenu) -> None:
         update.setEnabled(w.messages.logging)
 
     def choose() -> None:
-        chosen, _ = QFileDialog.getSaveFileName(w, "Log file", "messages.log", "Log files (*.log *.txt)")
-        if chosen:
+        chosen = w.prompts.save_path("Log file", "messages.log", "Log files (*.log *.txt)")
+        if chosen is not None:
             try:
-                w.messages.start_log(Path(chosen))
+                w.messages.start_log(chosen)
             except OSError as exc:
                 from motiontool.ui.file_errors import save_failed
 

@@ -18,12 +18,10 @@ from PySide6.QtGui import QColor
 from PySide6.QtWidgets import (
     QComboBox,
     QDoubleSpinBox,
-    QFileDialog,
     QHBoxLayout,
     QLabel,
     QLineEdit,
     QMainWindow,
-    QMessageBox,
     QPushButton,
     QSplitter,
     QTableWidget,
@@ -34,9 +32,11 @@ from PySide6.QtWidgets import (
 
 from motiontool.paramdb import database
 from motiontool.scope.curves import PALETTE, Curve, Scope, Source
+from motiontool.session.prompts import Prompts
 from motiontool.sweep.measures import format_value
 from motiontool.sweep.results import ResultsError, SweepResults, read_results
 from motiontool.ui.link_jobs import LinkJobs
+from motiontool.ui.prompts import QtPrompts
 
 AXIS_SIGNALS = ("APOS", "CPOS", "TRACKERR")   # what a point's run shows beside the measures' signals (MCO)
 FAILED = QColor(255, 220, 220)
@@ -44,8 +44,10 @@ MAX_TICKS = 12
 
 
 class SweepView(QMainWindow):
-    def __init__(self, results: SweepResults, path: Path, program: str = "", parent=None):
+    def __init__(self, results: SweepResults, path: Path, program: str = "", parent=None,
+                 prompts: Prompts | None = None):
         super().__init__(parent)
+        self.prompts = prompts.within(self) if prompts is not None else QtPrompts(self)   # the window's, over this
         self.results, self.path = results, path
         self.setWindowTitle(f"Sweep Results – {path.name}")
         self.jobs = LinkJobs(self)
@@ -197,10 +199,9 @@ class SweepView(QMainWindow):
         self._show_mark()
 
     def _browse(self) -> None:
-        chosen, _ = QFileDialog.getOpenFileName(self, "Swept program", self.program.text(),
-                                                "Programs (*.m *.dpl);;All files (*)")
-        if chosen:
-            self.program.setText(chosen)
+        chosen = self.prompts.open_path("Swept program", self.program.text(), "Programs (*.m *.dpl);;All files (*)")
+        if chosen is not None:
+            self.program.setText(str(chosen))
 
     def open_point(self) -> None:
         rows = self.table.selectionModel().selectedRows()
@@ -300,16 +301,16 @@ def open_sweep_results(w) -> SweepView | None:
     editor = w.current_editor()
     path = editor.file_path if editor is not None else None
     folder = str(Path(path).parent) if path is not None else ""      # a sweep is usually beside its program
-    chosen, _ = QFileDialog.getOpenFileName(w, "Sweep Results", folder, "Sweep results (*.csv);;All files (*)")
-    if not chosen:
+    chosen = w.prompts.open_path("Sweep Results", folder, "Sweep results (*.csv);;All files (*)")
+    if chosen is None:
         return None
     try:
         results = read_results(chosen)
     except (ResultsError, OSError) as exc:
-        QMessageBox.warning(w, "Sweep Results", str(exc))
+        w.prompts.warn("Sweep Results", str(exc))
         return None
     program = str(path) if path is not None and Path(path).suffix.lower() in (".m", ".dpl") else ""
-    view = SweepView(results, Path(chosen), program, parent=w)
+    view = SweepView(results, chosen, program, parent=w, prompts=w.prompts)
     view.setWindowFlag(Qt.WindowType.Window)
     view.show()
     w._sweeps = [v for v in getattr(w, "_sweeps", []) if v.isVisible()] + [view]
