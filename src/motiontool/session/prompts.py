@@ -2,7 +2,7 @@
 injected prompts object").
 
 A command (Execute's "Stop it?", Reset's "Continue?", a file to save to) asks through a `Prompts` it was given,
-never by opening a dialog itself: the IDE gives every window a `ui.prompts.QtPrompts` (the same message boxes,
+never by opening a dialog itself: the IDE gives every window a `qtjobs.prompts.QtPrompts` (the same message boxes,
 input dialogs and file dialogs as before), a test or a headless caller a `ScriptedPrompts` with the answers it
 wants. Each method returns None (or False) for Cancel, so "the user cancelled" is one test at the caller.
 """
@@ -46,10 +46,21 @@ class Prompts(Protocol):
     def integer(self, title: str, label: str, value: int, low: int, high: int) -> int | None:
         ...
 
+    def pick(self, title: str, label: str, items: Sequence[str], current: int) -> str | None:
+        """One of `items` from a list (`current` preselected)."""
+        ...
+
     def save_path(self, title: str, suggested: str, filters: str) -> Path | None:
         ...
 
+    def save_name(self, title: str, suggested: str | Path, filters: str) -> Path | None:
+        """The name to save a document under; a name typed without an extension gets the selected filter's."""
+        ...
+
     def open_path(self, title: str, directory: str, filters: str) -> Path | None:
+        ...
+
+    def folder(self, title: str, directory: str) -> Path | None:
         ...
 
     def warn(self, title: str, text: str, *, detail: str = "", critical: bool = False) -> None:
@@ -111,12 +122,26 @@ class ScriptedPrompts:
     def integer(self, title: str, label: str, value: int, low: int, high: int) -> int | None:
         return self._answer("integer", title, label)
 
+    def pick(self, title: str, label: str, items: Sequence[str], current: int) -> str | None:
+        answer = self._answer("pick", title, label)
+        if answer is not None and answer not in items:
+            raise PromptRefused(f"{answer!r} is not one of {list(items)} for {title!r}")
+        return answer
+
     def save_path(self, title: str, suggested: str, filters: str) -> Path | None:
         answer = self._answer("save_path", title, suggested)
         return None if answer is None else Path(answer)
 
+    def save_name(self, title: str, suggested: str | Path, filters: str) -> Path | None:
+        answer = self._answer("save_name", title, str(suggested))
+        return None if answer is None else Path(answer)
+
     def open_path(self, title: str, directory: str, filters: str) -> Path | None:
         answer = self._answer("open_path", title, directory)
+        return None if answer is None else Path(answer)
+
+    def folder(self, title: str, directory: str) -> Path | None:
+        answer = self._answer("folder", title, directory)
         return None if answer is None else Path(answer)
 
     def warn(self, title: str, text: str, *, detail: str = "", critical: bool = False) -> None:

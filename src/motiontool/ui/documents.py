@@ -82,7 +82,7 @@ def _cam(w, path: Path) -> QWidget | None:
 def _scope(w, path: Path) -> QWidget:
     from motiontool.scope.ui import open_scope_file
 
-    window = open_scope_file(path, parent=w)
+    window = open_scope_file(path, parent=w, prompts=w.prompts)
     window.setWindowFlag(Qt.WindowType.Window, True)
     tool_windows.keep_scope(w, window)
     window.show()

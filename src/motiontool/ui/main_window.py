@@ -219,6 +219,7 @@ class MainWindow(QMainWindow):
 
     def _add_editor(self, title: str, text: str, path: Path | None) -> CodeEditor:
         editor = CodeEditor(self, settings=self.editor_settings())
+        editor.prompts = self.prompts.within(editor)   # its Go to Line, Repeat, Print, Find in Files' folder
         editor.setPlainText(text)
         editor.mark_saved()
         editor.setProperty("path", str(path) if path else "")
@@ -253,12 +254,9 @@ class MainWindow(QMainWindow):
             return False
         target = path or (Path(editor.property("path")) if editor.property("path") else None)
         if target is None:
-            from motiontool.scope.ui.save_name import ask_save_name  # adds .m/.dpl to a bare name
-
-            chosen, _ = ask_save_name(self, "Save as", "program.m", PROGRAM_FILTER)
-            if not chosen:
+            target = self.prompts.save_name("Save as", "program.m", PROGRAM_FILTER)  # adds .m/.dpl to a bare name
+            if target is None:
                 return False
-            target = Path(chosen)
         try:
             atomic_write_text(target, editor.toPlainText())
         except OSError as exc:  # the buffer, its autosave and the window stay as they are (decisions R7)
@@ -280,10 +278,8 @@ class MainWindow(QMainWindow):
         editor = self.current_editor()
         if editor is None:
             return False
-        from motiontool.scope.ui.save_name import ask_save_name  # adds .m/.dpl to a bare name
-
-        chosen, _ = ask_save_name(self, "Save as", editor.property("path") or "program.m", PROGRAM_FILTER)
-        return bool(chosen) and self.save(editor=editor, path=Path(chosen))
+        chosen = self.prompts.save_name("Save as", editor.property("path") or "program.m", PROGRAM_FILTER)
+        return chosen is not None and self.save(editor=editor, path=chosen)
 
     def close_tab(self, index: int) -> bool:
         """Close tab `index` (the tab bar's close button sends it), asking to save a changed program."""

@@ -231,7 +231,7 @@ class SweepView(QMainWindow):
         from motiontool.scope.ui.window import ScopeWindow
 
         scope = point_scope(result, f"point {number}: {self._point_text(row)}")
-        window = ScopeWindow(None, scope.variant, scope=scope, parent=self, ask=False)
+        window = ScopeWindow(None, scope.variant, scope=scope, parent=self, ask=False, prompts=self.prompts)
         window.setWindowTitle(f"Oscilloscope – sweep point {number} ({self._point_text(row)})")
         window.zoom_reset()
         window.show()

@@ -13,11 +13,8 @@ from PySide6.QtGui import QAction, QBrush, QColor, QFont, QKeySequence
 from PySide6.QtWidgets import (
     QAbstractItemView,
     QComboBox,
-    QFileDialog,
-    QInputDialog,
     QLabel,
     QMainWindow,
-    QMessageBox,
     QTableView,
     QWidget,
 )
@@ -26,6 +23,7 @@ from motiontool.arrayeditor.rows import ArrayList, Row, fetch_controller
 from motiontool.comms.protocol import LinkError
 from motiontool.fileio import reason
 from motiontool.formats.zba import ZbaError, read_zba, write_zba
+from motiontool.qtjobs.prompts import window_prompts
 
 
 def shown_date(stamp: str) -> str:
@@ -142,9 +140,10 @@ class ArrayTableModel(QAbstractTableModel):
 
 
 class ArrayEditor(QMainWindow):
-    def __init__(self, bridge=None, controllers=None, parent: QWidget | None = None) -> None:
+    def __init__(self, bridge=None, controllers=None, parent: QWidget | None = None, *, prompts=None) -> None:
         super().__init__(parent)
         self.bridge = bridge
+        self._prompts = prompts   # None: the bridge's (its APOSS window's), else the Qt dialogs (issue 27 item 5)
         self.data_list = ArrayList()
         self.path: Path | None = None
         self.model = ArrayTableModel(self.data_list, self)
@@ -225,8 +224,12 @@ class ArrayEditor(QMainWindow):
     def _link(self):
         return None if self.bridge is None else self.bridge.link
 
+    @property
+    def prompts(self):
+        return window_prompts(self, self._prompts, self.bridge)
+
     def _error(self, text: str) -> None:
-        QMessageBox.warning(self, "Array Editor", text)
+        self.prompts.warn("Array Editor", text)
 
     # --- toolbar ---------------------------------------------------------------------------------------
     def read_controller(self) -> bool:
@@ -277,8 +280,8 @@ class ArrayEditor(QMainWindow):
 
     def add_array(self, *, size: int | None = None) -> int | None:
         if size is None:
-            size, ok = QInputDialog.getInt(self, "Add array", "Number of elements:", 10, 1, 100000)
-            if not ok:
+            size = self.prompts.integer("Add array", "Number of elements:", 10, 1, 100000)
+            if size is None:
                 return None
         k = self.data_list.add_array(size)
         self._refresh()
@@ -298,11 +301,9 @@ class ArrayEditor(QMainWindow):
 
     def open_file(self, *, path: Path | None = None) -> bool:
         if path is None:
-            chosen, _ = QFileDialog.getOpenFileName(self, "Open array definition file", "",
-                                                    "Array definition (*.zba)")
-            if not chosen:
+            path = self.prompts.open_path("Open array definition file", "", "Array definition (*.zba)")
+            if path is None:
                 return False
-            path = Path(chosen)
         try:
             zba = read_zba(path)
         except (ZbaError, OSError) as exc:
@@ -320,19 +321,15 @@ class ArrayEditor(QMainWindow):
 
     def save_as(self, *, path: Path | None = None) -> bool:
         if path is None:
-            chosen, _ = QFileDialog.getSaveFileName(self, "Save array definition file", "arrays.zba",
-                                                    "Array definition (*.zba)")
-            if not chosen:
+            path = self.prompts.save_path("Save array definition file", "arrays.zba", "Array definition (*.zba)")
+            if path is None:
                 return False
-            path = Path(chosen)
         try:
             zba = self.data_list.to_zba()
             write_zba(path, zba)
         except OSError as exc:  # the editor keeps its values and its file (decisions R7)
-            box = QMessageBox(QMessageBox.Icon.Critical, "Array Editor", f"Cannot write {path}:\n{reason(exc)}.",
-                              QMessageBox.StandardButton.Ok, self)
-            box.setInformativeText("The values are still in the editor: save them somewhere else.")
-            box.exec()
+            self.prompts.warn("Array Editor", f"Cannot write {path}:\n{reason(exc)}.", critical=True,
+                              detail="The values are still in the editor: save them somewhere else.")
             return False
         except ZbaError as exc:
             self._error(f"{path}: {exc}")

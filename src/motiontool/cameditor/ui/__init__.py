@@ -17,7 +17,8 @@ def open_cam_editor(bridge, *, parent=None):
         from motiontool.cameditor.ui.window import CamEditor
 
         editor = CamEditor(link_provider=lambda: bridge.link, parent=parent,
-                           controller=lambda: getattr(bridge, "controller_id", None), wait=bridge.waiting)
+                           controller=lambda: getattr(bridge, "controller_id", None), wait=bridge.waiting,
+                           prompts=getattr(bridge, "prompts", None))
         editor.setWindowFlag(Qt.WindowType.Window, True)
         editor.setAttribute(Qt.WidgetAttribute.WA_DeleteOnClose, True)
     finally:

@@ -21,7 +21,6 @@ from PySide6.QtWidgets import (
     QComboBox,
     QDialog,
     QDialogButtonBox,
-    QFileDialog,
     QFormLayout,
     QHBoxLayout,
     QLabel,
@@ -44,6 +43,7 @@ from motiontool.cameditor.apcconvert import curve_to_smooth_table, table_to_curv
 from motiontool.cameditor.apcdpl import DplImportError, import_dpl, table_program, table_to_dpl
 from motiontool.cameditor.apctable import ApcCamTable, ApcSegment, ApcTableError
 from motiontool.fileio import atomic_write_text
+from motiontool.qtjobs.prompts import prompts_for
 
 WORKED_EXAMPLE = ApcCamTable("Cam", (ApcSegment(109227, 109227, 2), ApcSegment(218454, 436908, 0),
                                      ApcSegment(54613, 54613, 3)))   # §4.7.2, L1261-1376
@@ -288,11 +288,10 @@ class ApcPanel(QWidget):
     def export_dialog(self, *, path: Path | None = None) -> bool:
         """Export DPL: the Initial-task lines for this table (or a whole runnable program for a .dpl file)."""
         if path is None:
-            chosen, _ = QFileDialog.getSaveFileName(self, "Export DPL", f"{self.table.name}.dpl",
-                                                    "DPL program (*.dpl);;DPL lines (*.txt)")
-            if not chosen:
+            path = prompts_for(self).save_path("Export DPL", f"{self.table.name}.dpl",
+                                               "DPL program (*.dpl);;DPL lines (*.txt)")
+            if path is None:
                 return False
-            path = Path(chosen)
         text = table_program(self.table, master_rpm=self.master_rpm.value(),
                              counts_per_rev=self.counts_per_rev.value()) \
             if path.suffix.lower() == ".dpl" else table_to_dpl(self.table)
@@ -302,10 +301,9 @@ class ApcPanel(QWidget):
 
     def import_dialog(self, *, path: Path | None = None) -> bool:
         if path is None:
-            chosen, _ = QFileDialog.getOpenFileName(self, "Import DPL", "", "DPL programs (*.dpl);;All files (*)")
-            if not chosen:
+            path = prompts_for(self).open_path("Import DPL", "", "DPL programs (*.dpl);;All files (*)")
+            if path is None:
                 return False
-            path = Path(chosen)
         try:
             table = import_dpl(path.read_text(encoding="utf-8"), str(path))
         except DplImportError as exc:  # its messages name the file already

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pyqtgraph as pg
 from PySide6.QtCore import Qt
-from PySide6.QtWidgets import QComboBox, QDialog, QDialogButtonBox, QFileDialog, QFormLayout, QLabel, QVBoxLayout
+from PySide6.QtWidgets import QComboBox, QDialog, QDialogButtonBox, QFormLayout, QLabel, QVBoxLayout
 
 from motiontool.camcurve.model import Curve
 from motiontool.cameditor.trace import TraceError, TraceTable, guess_columns, read_trace, wrap
@@ -74,9 +74,9 @@ class TraceOverlay:
 
     # -- actions ---------------------------------------------------------------------------------------------------
     def load_dialog(self) -> None:
-        path, _ = QFileDialog.getOpenFileName(self.editor, "Overlay measured trace", "", TRACE_FILTER)
-        if path:
-            self.load(Path(path))
+        path = self.editor.prompts.open_path("Overlay measured trace", "", TRACE_FILTER)
+        if path is not None:
+            self.load(path)
 
     def load(self, path: Path) -> TraceColumnsDialog | None:
         """Read the trace and open the column dialog (non-blocking, ``editor.dialog``); None when refused."""

@@ -12,11 +12,9 @@ from PySide6.QtCore import QEvent, Qt
 from PySide6.QtGui import QAction, QKeySequence
 from PySide6.QtWidgets import (
     QComboBox,
-    QFileDialog,
     QLabel,
     QLineEdit,
     QMainWindow,
-    QMessageBox,
     QSplitter,
     QStyle,
     QTabWidget,
@@ -49,6 +47,7 @@ from motiontool.comms.protocol import LinkError
 from motiontool.fileio import reason, write_error
 from motiontool.formats.dat import DatError, read_dat, write_dat
 from motiontool.formats.zbc import EXTENSIONS, ArrayEntry, ConfigError, ConfigFile, read_config, write_config
+from motiontool.qtjobs.prompts import window_prompts
 
 FILE_FILTER = "CAM configuration (*.zbc *.cnf);;All files (*)"
 
@@ -68,13 +67,14 @@ class Slot:
 
 class CamEditor(QMainWindow):
     def __init__(self, link_provider: Callable[[], Link | None] | None = None, parent=None,
-                 controller: Callable[[], int | None] | None = None, wait=None) -> None:
+                 controller: Callable[[], int | None] | None = None, wait=None, prompts=None) -> None:
         super().__init__(parent)
         self.link_provider = link_provider or (lambda: None)
         self.controller = controller or (lambda: None)  # the number of the controller Read/Write talk to
         # wait(window, text, work): the IDE's link_jobs.waiting (the request on a thread while this window paints);
         # an editor without the IDE (a test's embedded link) asks in place
         self.wait = wait or (lambda _window, _text, work: work())
+        self._prompts = prompts  # the APOSS window's (issue 27 item 5); None: the Qt dialogs over this window
         self.confirm = True  # ask before discarding changes / overwriting a controller (tests switch it off)
         self.parameters: dict[str, int | float] = {}
         self.slots: list[Slot] = []
@@ -389,11 +389,14 @@ class CamEditor(QMainWindow):
         self.refresh(zoom=True)
 
     # -- files -----------------------------------------------------------------------------------------------------
+    @property
+    def prompts(self):
+        return window_prompts(self, self._prompts)
+
     def _discard_ok(self) -> bool:
         if not self.modified or not self.confirm:
             return True
-        answer = QMessageBox.question(self, "CAM-Editor", "Discard the changes?")
-        return answer == QMessageBox.StandardButton.Yes
+        return self.prompts.confirm("CAM-Editor", "Discard the changes?")
 
     def set_modified(self, *, modified: bool = True) -> None:
         self.modified = modified
@@ -419,9 +422,9 @@ class CamEditor(QMainWindow):
     def open_dialog(self) -> None:
         if not self._discard_ok():
             return
-        path, _ = QFileDialog.getOpenFileName(self, "Open CAM configuration", "", FILE_FILTER)
-        if path:
-            self.open_file(Path(path))
+        path = self.prompts.open_path("Open CAM configuration", "", FILE_FILTER)
+        if path is not None:
+            self.open_file(path)
 
     def open_file(self, path: Path) -> bool:
         try:
@@ -449,8 +452,8 @@ class CamEditor(QMainWindow):
         return self.save_file(self.path) if self.path else self.save_as_dialog()
 
     def save_as_dialog(self) -> bool:
-        path, _ = QFileDialog.getSaveFileName(self, "Save CAM configuration", str(self.path or ""), FILE_FILTER)
-        return self.save_file(Path(path)) if path else False
+        path = self.prompts.save_path("Save CAM configuration", str(self.path or ""), FILE_FILTER)
+        return self.save_file(path) if path is not None else False
 
     def save_file(self, path: Path) -> bool:
         """Save atomically as .zbc or .cnf [DG L3483-3485]; nothing is written when a curve cannot be stored."""
@@ -498,11 +501,10 @@ class CamEditor(QMainWindow):
         if link is None:
             self.message("Write to controller: no controller is connected (Settings → Interface)")
             return False
-        if self.confirm:
-            answer = QMessageBox.question(self, "CAM-Editor", "Write all parameters and arrays of this file to the "
-                                          "controller? Its own parameters and arrays are overwritten.")
-            if answer != QMessageBox.StandardButton.Yes:
-                return False
+        if self.confirm and not self.prompts.confirm("CAM-Editor", "Write all parameters and arrays of this file "
+                                                     "to the controller? Its own parameters and arrays are "
+                                                     "overwritten."):
+            return False
         try:
             config = self.config()
             self.wait(self, f"{self._controller_name()}: writing parameters and arrays …",
@@ -514,9 +516,9 @@ class CamEditor(QMainWindow):
         return True
 
     def import_dialog(self) -> None:
-        path, _ = QFileDialog.getOpenFileName(self, "Import curve", "", "CAM export (*.dat);;All files (*)")
-        if path:
-            self.import_dat(Path(path))
+        path = self.prompts.open_path("Import curve", "", "CAM export (*.dat);;All files (*)")
+        if path is not None:
+            self.import_dat(path)
 
     def import_dat(self, path: Path) -> bool:
         """Replace the selected curve by an exported one; anything else is refused [DG L3580]."""
@@ -537,9 +539,9 @@ class CamEditor(QMainWindow):
         curve = self.curve()
         if curve is None:
             return
-        path, _ = QFileDialog.getSaveFileName(self, "Export curve", f"{curve.name}.dat", "CAM export (*.dat)")
-        if path:
-            self.export_dat(Path(path))
+        path = self.prompts.save_path("Export curve", f"{curve.name}.dat", "CAM export (*.dat)")
+        if path is not None:
+            self.export_dat(path)
 
     def export_dat(self, path: Path) -> bool:
         try:
@@ -556,10 +558,8 @@ class CamEditor(QMainWindow):
     def _write_failed(self, title: str, path: Path, exc: OSError, kept: str) -> None:
         self.message(f"{title} failed: {write_error(path, exc)}")
         if self.confirm:
-            box = QMessageBox(QMessageBox.Icon.Critical, f"CAM-Editor — {title}",
-                              f"Cannot write {path}:\n{reason(exc)}.", QMessageBox.StandardButton.Ok, self)
-            box.setInformativeText(kept)
-            box.exec()
+            self.prompts.warn(f"CAM-Editor — {title}", f"Cannot write {path}:\n{reason(exc)}.", detail=kept,
+                              critical=True)
 
     def closeEvent(self, event) -> None:  # noqa: N802 - Qt override
         if self._discard_ok():

@@ -17,7 +17,6 @@ from PySide6.QtWidgets import (
     QHBoxLayout,
     QLabel,
     QLineEdit,
-    QMessageBox,
     QPushButton,
     QRadioButton,
     QSpinBox,
@@ -28,6 +27,7 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from motiontool.qtjobs.prompts import prompts_for
 from motiontool.scope.curves import FORMATS, INTERPOLATIONS, Curve, Group, Scaling
 from motiontool.scope.derived import KINDS
 from motiontool.scope.select import CHOICES, canonical
@@ -350,13 +350,13 @@ class PropertiesDialog(QDialog):
             low = float(self.low.text()) if self.low.text().strip() else None
             high = float(self.high.text()) if self.high.text().strip() else None
         except ValueError:
-            QMessageBox.warning(self, "Properties", "Range validation bounds must be numbers or blank")
+            prompts_for(self).warn("Properties", "Range validation bounds must be numbers or blank")
             return
         try:
             text = self.select.currentText()
             select = None if text == WHOLE_VALUE else canonical(text)
         except ValueError as exc:
-            QMessageBox.warning(self, "Properties", str(exc))
+            prompts_for(self).warn("Properties", str(exc))
             return
         c.source.select = select
         if QColor(self.colour.text()).isValid():

@@ -9,7 +9,7 @@ import threading
 from typing import TYPE_CHECKING
 
 from PySide6.QtCore import QTimer
-from PySide6.QtWidgets import QMessageBox, QProgressDialog
+from PySide6.QtWidgets import QProgressDialog
 
 from motiontool.comms.protocol import LinkError
 from motiontool.scope import derived
@@ -85,7 +85,7 @@ class RunControl:
         w, scope = self.window, self.window.scope
         link = w.link
         if link is None:
-            QMessageBox.warning(w, "Oscilloscope", "No controller connected (Reconnect first).")
+            w.prompts.warn("Oscilloscope", "No controller connected (Reconnect first).")
             return
         resume = self.paused
         if resume:
@@ -119,7 +119,7 @@ class RunControl:
                 if not groups and not self.polling.curves():
                     raise ValueError("no active curve to record: add a curve first")
         except (ValueError, LinkError) as exc:
-            QMessageBox.warning(w, "Oscilloscope", str(exc)) if w.ask else None
+            w.prompts.warn("Oscilloscope", str(exc)) if w.ask else None
             w.statusBar().showMessage(str(exc), 10000)
             return
         w.chart.live = True
@@ -178,7 +178,7 @@ class RunControl:
         try:
             self.trigger = dialog.trigger()
         except ValueError as exc:
-            QMessageBox.warning(w, "Trigger", str(exc))
+            w.prompts.warn("Trigger", str(exc))
             return
         self.trigger_single = dialog.single.isChecked()
         w.statusBar().showMessage("Trigger off" if self.trigger is None else

@@ -4,8 +4,6 @@ made in the GUI thread. A refused or lost request is said in the status bar; the
 
 from __future__ import annotations
 
-from PySide6.QtWidgets import QInputDialog
-
 from motiontool.comms.protocol import LinkError
 from motiontool.scope.acquisition import list_testsetp, load_testsetp, reload_testsetp
 from motiontool.scope.ui.poll_job import wait
@@ -28,8 +26,8 @@ def load_recordings(window) -> None:
     chosen = found[-1]
     if len(found) > 1 and window.ask:
         labels = [f"{r.index}: {r.name} ({r.samples} sets)" for r in found]
-        text, ok = QInputDialog.getItem(window, "TESTSETP", "Recording to upload:", labels, len(labels) - 1, False)
-        if not ok:
+        text = window.prompts.pick("TESTSETP", "Recording to upload:", labels, len(labels) - 1)
+        if text is None:
             return
         chosen = found[labels.index(text)]
     if any(c.source.method == "testsetp" and c.source.info.get("index") == chosen.index

@@ -14,15 +14,14 @@ from PySide6.QtCore import QEvent, QObject, Qt, Signal
 from PySide6.QtGui import QAction, QActionGroup, QKeySequence
 from PySide6.QtWidgets import (
     QDockWidget,
-    QFileDialog,
     QLabel,
     QMainWindow,
-    QMessageBox,
     QSpinBox,
     QSplitter,
 )
 
 from motiontool.fileio import reason
+from motiontool.qtjobs.prompts import window_prompts
 from motiontool.scope import derived, zbo
 from motiontool.scope.acquisition import default_group, new_curve
 from motiontool.scope.curves import Scope
@@ -40,7 +39,6 @@ from motiontool.scope.ui.fft import FftView
 from motiontool.scope.ui.list_menu import show_list_menu
 from motiontool.scope.ui.poll_job import PollJob
 from motiontool.scope.ui.run_control import LIVE_WINDOW_S, RunControl
-from motiontool.scope.ui.save_name import ask_save_name
 from motiontool.scope.ui.testsetp_load import load_recordings
 
 TITLES = {"free_run": "Free Run", "polling": "Free Run (polling)", "single_shot": "Single Shot",
@@ -53,7 +51,7 @@ class _Relay(QObject):
 
 class ScopeWindow(QMainWindow):
     def __init__(self, link_or_bridge=None, variant: str = "free_run", scope: Scope | None = None,
-                 parent=None, ask: bool = True, path: Path | None = None):
+                 parent=None, ask: bool = True, path: Path | None = None, prompts=None):
         super().__init__(parent)
         self.setAttribute(Qt.WA_DeleteOnClose, False)
         self.ask = ask            # False: no modal dialogs (tests, scripted use)
@@ -63,6 +61,7 @@ class ScopeWindow(QMainWindow):
             scope.settings.relative_origin = True
         self.scope = scope
         self.bridge = None
+        self._prompts = prompts   # None: the bridge's (its APOSS window's), else the Qt dialogs (issue 27 item 5)
         self._link = None
         self._relay = _Relay(self)
         self._relay.event.connect(self._on_event)
@@ -104,6 +103,11 @@ class ScopeWindow(QMainWindow):
         super().changeEvent(event)
         if event.type() == QEvent.Type.ActivationChange and self.isActiveWindow():
             self.run.refresh_tune()  # back from another window: the gains there may have changed
+
+    @property
+    def prompts(self):
+        """What this window asks through, shown over it (its APOSS window's prompts when it has one)."""
+        return window_prompts(self, self._prompts, self.bridge)
 
     # --- the link ------------------------------------------------------------------------------------------
     @property
@@ -308,7 +312,7 @@ class ScopeWindow(QMainWindow):
                 self.add_signal_curve(dlg.signal.text(), group=None if group.startswith("Polled") else group,
                                       name=dlg.name.text() or None)
         except (ValueError, KeyError) as exc:
-            QMessageBox.warning(self, "Add Curve", str(exc))
+            self.prompts.warn("Add Curve", str(exc))
 
     def load_recordings(self) -> None:
         """TESTSETP: one recording is loaded at once; with several the user picks (DG 5326-5333)."""
@@ -410,17 +414,16 @@ class ScopeWindow(QMainWindow):
         self.update_title()
 
     def save_dialog(self, *, with_data: bool = True) -> bool:
-        path, _ = ask_save_name(self, "Save oscilloscope", self.path or "", "Oscilloscope files (*.zbo)")
-        if not path:
+        chosen = self.prompts.save_name("Save oscilloscope", self.path or "", "Oscilloscope files (*.zbo)")
+        if chosen is None:
             return False
+        path = str(chosen)
         path = path if path.lower().endswith(".zbo") else path + ".zbo"  # File ▸ Open knows it by .zbo only
         try:
             self.save_to(path, with_data=with_data)
         except OSError as exc:  # the window and its curves stay as they are (decisions R7)
-            box = QMessageBox(QMessageBox.Icon.Critical, "Save", f"Cannot write {path}:\n{reason(exc)}.",
-                              QMessageBox.StandardButton.Ok, self)
-            box.setInformativeText("The curves are still in this window: save them somewhere else.")
-            box.exec()
+            self.prompts.warn("Save", f"Cannot write {path}:\n{reason(exc)}.", critical=True,
+                              detail="The curves are still in this window: save them somewhere else.")
             return False
         return True
 
@@ -438,12 +441,10 @@ class ScopeWindow(QMainWindow):
         when the window may close. No question in scripted use (ask=False, or a main window that asks nothing)."""
         if not self.ask or not getattr(self.parent(), "ask_to_save", True) or not self.unsaved_recording():
             return True
-        buttons = QMessageBox.StandardButton
-        answer = QMessageBox.question(self, "Oscilloscope", f"Save the recording of {self.windowTitle()}?",
-                                      buttons.Save | buttons.Discard | buttons.Cancel)
-        if answer == buttons.Save:
+        answer = self.prompts.save_changes("Oscilloscope", f"Save the recording of {self.windowTitle()}?")
+        if answer == "save":
             return self.save_dialog()  # cancelled or failed: the window stays, with its curves
-        if answer == buttons.Discard:
+        if answer == "discard":
             self._saved_mark = self._data_mark()
             return True
         return False
@@ -456,24 +457,23 @@ class ScopeWindow(QMainWindow):
             export_csv(self.scope, path)
 
     def export_dialog(self) -> None:
-        path, _ = ask_save_name(self, "Export curves", "", "CSV (*.csv *.txt);;MDF4 via asammdf (*.mf4)")
-        if not path:
+        path = self.prompts.save_name("Export curves", "", "CSV (*.csv *.txt);;MDF4 via asammdf (*.mf4)")
+        if path is None:
             return
         try:
             self.export_to(path)
         except OSError as exc:
-            QMessageBox.critical(self, "Export", f"Cannot write {path}:\n{reason(exc)}.")
+            self.prompts.warn("Export", f"Cannot write {path}:\n{reason(exc)}.", critical=True)
         except (Mdf4Unavailable, ValueError) as exc:
-            QMessageBox.warning(self, "Export", str(exc))
+            self.prompts.warn("Export", str(exc))
 
     def open_dialog(self) -> None:
-        path, _ = QFileDialog.getOpenFileName(self, "Open oscilloscope", "",
-                                              "Oscilloscope files (*.zbo);;Old Testrun Files (*.txt)")
-        if path:
+        path = self.prompts.open_path("Open oscilloscope", "", "Oscilloscope files (*.zbo);;Old Testrun Files (*.txt)")
+        if path is not None:
             try:
-                window = open_scope_file(path)
+                window = open_scope_file(path, prompts=self.prompts)
             except (ValueError, OSError) as exc:
-                QMessageBox.warning(self, "Open", str(exc))
+                self.prompts.warn("Open", str(exc))
                 return
             window.show()
             self._opened = window
@@ -488,12 +488,13 @@ class ScopeWindow(QMainWindow):
         super().closeEvent(event)
 
 
-def open_scope_file(path: Path | str, parent=None) -> ScopeWindow:
+def open_scope_file(path: Path | str, parent=None, *, prompts=None) -> ScopeWindow:
     """File → Open of a .zbo or an old Testrun .txt: a scope window that is not connected (DG 5277-5285,
-    5357-5376). NotTestrun (a ValueError) means: open the .txt as text instead."""
+    5357-5376); it asks through `prompts` (the window's that opened it) or the Qt dialogs. NotTestrun (a
+    ValueError) means: open the .txt as text instead."""
     path = Path(path)
     scope = read_testrun(path) if path.suffix.lower() == ".txt" else zbo.load(path)
-    window = ScopeWindow(None, scope.variant, scope=scope, parent=parent, ask=False, path=path)
+    window = ScopeWindow(None, scope.variant, scope=scope, parent=parent, ask=False, path=path, prompts=prompts)
     window._saved_mark = window._data_mark()
     window.zoom_reset()
     return window

@@ -39,6 +39,7 @@ from PySide6.QtGui import (
 )
 from PySide6.QtWidgets import QCompleter, QMenu, QPlainTextEdit, QTextEdit, QToolTip, QWidget
 
+from motiontool.qtjobs.prompts import QtPrompts
 from motiontool.ui.editor import dpl_lang, lang, outline
 from motiontool.ui.editor.bookmark_marks import Bookmarks
 from motiontool.ui.editor.completion import CompletionModel, HintDelegate
@@ -81,6 +82,7 @@ class CodeEditor(QPlainTextEdit):
         self.file_path: Path | None = None
         self._diagnostics: list[_Diagnostic] = []
         self.macros = MacroSlots()  # the saved macros: the application keeps them across restarts
+        self.prompts = QtPrompts(self)  # what its commands ask through; a main window gives its own (issue 27.5)
         self.edit = Editing(self)
         self.search = Searching(self)
         self.recorder = MacroRecorder(self)

@@ -9,7 +9,6 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from PySide6.QtGui import QTextCursor
-from PySide6.QtWidgets import QInputDialog
 
 from motiontool.ui.editor import textops
 
@@ -44,9 +43,9 @@ class Editing:
 
     def goto_line_dialog(self) -> None:
         """Ctrl-G: ask for a line number and go there [DG L2111]."""
-        line, ok = QInputDialog.getInt(self.editor, "Go to Line", f"Line number (1-{self.editor.blockCount()}):",
-                                       self.caret_line_col()[0], 1, self.editor.blockCount())
-        if ok:
+        line = self.editor.prompts.integer("Go to Line", f"Line number (1-{self.editor.blockCount()}):",
+                                           self.caret_line_col()[0], 1, self.editor.blockCount())
+        if line is not None:
             self.goto_line(line)
 
     def goto_matching_bracket(self) -> bool:
@@ -269,6 +268,6 @@ class Editing:
         self.repeat_count = max(0, int(count))
 
     def repeat_dialog(self) -> None:
-        count, ok = QInputDialog.getInt(self.editor, "Repeat", "Repeat the next command this many times:", 2, 1, 9999)
-        if ok:
+        count = self.editor.prompts.integer("Repeat", "Repeat the next command this many times:", 2, 1, 9999)
+        if count is not None:
             self.repeat_next(count)

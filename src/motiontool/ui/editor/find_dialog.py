@@ -14,7 +14,6 @@ from PySide6.QtWidgets import (
     QCheckBox,
     QComboBox,
     QDialog,
-    QFileDialog,
     QFormLayout,
     QGridLayout,
     QGroupBox,
@@ -29,10 +28,12 @@ from PySide6.QtWidgets import (
     QWidget,
 )
 
+from motiontool.qtjobs.prompts import QtPrompts
 from motiontool.ui.editor import search
 from motiontool.ui.editor.search import PatternError, SearchOptions
 
 if TYPE_CHECKING:
+    from motiontool.session.prompts import Prompts
     from motiontool.ui.editor.code_editor import CodeEditor
 
 SYNTAXES = (("Plain text", "plain"), ("Pattern (manual syntax: ? + * [ ] | ( ))", "pattern"),
@@ -178,8 +179,9 @@ class FindInFilesDialog(QDialog):
 
     locationActivated = Signal(str, int, int)  # path, line, column (1-based)
 
-    def __init__(self, root: str | Path, parent: QWidget | None = None) -> None:
+    def __init__(self, root: str | Path, parent: QWidget | None = None, *, prompts: Prompts | None = None) -> None:
         super().__init__(parent)
+        self.prompts = prompts.within(self) if prompts is not None else QtPrompts(self)   # its editor's, over it
         self.setWindowTitle("Find in Files")
         self.resize(720, 420)
         self.find_edit = QLineEdit()
@@ -232,9 +234,9 @@ class FindInFilesDialog(QDialog):
         self.find_edit.selectAll()
 
     def _browse(self) -> None:
-        folder = QFileDialog.getExistingDirectory(self, "Folder", self.folder_edit.text())
-        if folder:
-            self.folder_edit.setText(folder)
+        folder = self.prompts.folder("Folder", self.folder_edit.text())
+        if folder is not None:
+            self.folder_edit.setText(str(folder))
 
     def run_search(self) -> list[search.FileHit]:
         self.results.clear()

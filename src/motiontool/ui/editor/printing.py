@@ -89,11 +89,9 @@ def print_editor(editor, printer) -> None:
     `editor.printed`. A printer that cannot start is said in a message box; the program is untouched."""
     from pathlib import Path
 
-    from PySide6.QtWidgets import QMessageBox
-
     path = editor.property("path")
     name = Path(path).name if path else editor.property("sample") or "Untitled"
     try:
         editor.printed = print_program(editor.toPlainText(), editor.font(), printer, name)
     except OSError as exc:
-        QMessageBox.warning(editor, "Print", f"{exc}.")
+        editor.prompts.warn("Print", f"{exc}.")

@@ -169,7 +169,7 @@ class Searching:
         """Edit → Find in Files: search the saved files beside the program (ide-spec 1.36)."""
         if self.files_dialog is None:
             root = self.editor.file_path.parent if self.editor.file_path else Path.cwd()
-            self.files_dialog = FindInFilesDialog(root, self.editor)
+            self.files_dialog = FindInFilesDialog(root, self.editor, prompts=self.editor.prompts)
             self.files_dialog.locationActivated.connect(self._open_location)
         self.files_dialog.open_for(text=self.word_under_caret())
         return self.files_dialog
