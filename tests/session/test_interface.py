@@ -30,14 +30,18 @@ def state(link, want: str) -> None:
         time.sleep(0.01)
 
 
+def run_loops(*sessions: Session) -> None:
+    for session in sessions:
+        session.link.download(LOOP.to_bytes(), name="loop")
+        session.link.start()
+        state(session.link, "running")
+
+
 def test_break_all_stops_every_running_program_of_the_interface_and_start_all_starts_them(registry):
     said: list[str] = []
     session, other = Session(registry), Session(registry)
     assert session.select(1) and other.select(3)
-    for link in (session.link, other.link):
-        link.download(LOOP.to_bytes(), name="loop")
-        link.start()
-        state(link, "running")
+    run_loops(session, other)
     commands = InterfaceCommands(session, said.append)
     assert commands.break_all() == [1, 3]           # also the controller another window holds
     assert said == ["Break all: stopped the programs of controllers 1, 3"]
@@ -65,10 +69,7 @@ def test_a_controller_that_refuses_is_said_and_the_others_go_on(registry):
     said: list[str] = []
     session, other = Session(registry), Session(registry)
     assert session.select(1) and other.select(2)
-    for link in (session.link, other.link):
-        link.download(LOOP.to_bytes(), name="loop")
-        link.start()
-        state(link, "running")
+    run_loops(session, other)
 
     def run(doing, work):
         if doing == "Controller 1: Break all …":
