@@ -2,27 +2,8 @@
 injected prompts object"): a MainWindow built with a ScriptedPrompts opens no dialog; the script answers what
 the user would, and the menu commands, triggered as a user does, act on those answers."""
 
-import pytest
-from PySide6.QtCore import QSettings
 
 from motiontool.formats.zbc import read_config
-from motiontool.session.prompts import ScriptedPrompts
-from motiontool.ui.main_window import MainWindow
-
-
-@pytest.fixture
-def scripted(qtbot, tmp_path):
-    prompts = ScriptedPrompts()
-    settings = QSettings(str(tmp_path / "settings.ini"), QSettings.Format.IniFormat)
-    w = MainWindow(settings=settings, realtime_factor=50.0, prompts=prompts)
-    w.ask_to_save = False
-    qtbot.addWidget(w)
-    w.show()
-    qtbot.waitExposed(w)
-    assert w.development.connect_default()
-    yield w, prompts
-    w.bridge.detach(close=False)
-    w.controllers.close()
 
 
 def test_reset_arrays_answered_no_leaves_the_arrays_and_yes_deletes_them(scripted, qtbot):

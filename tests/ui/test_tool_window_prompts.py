@@ -3,38 +3,10 @@ through one injected prompts object"): a MainWindow built with a ScriptedPrompts
 editor, Array Editor and oscilloscope through the bridge, the editor when the window creates it), so the script
 answers what the user would and no dialog opens. Driven as a user does: menu and toolbar actions triggered, keys."""
 
-import pytest
-from PySide6.QtCore import QSettings, Qt, QTimer
-from PySide6.QtWidgets import QApplication, QPushButton
+from PySide6.QtCore import Qt
+from PySide6.QtWidgets import QPushButton
 
 from motiontool.scope import zbo
-from motiontool.session.prompts import ScriptedPrompts
-from motiontool.ui.main_window import MainWindow
-
-
-@pytest.fixture
-def scripted(qtbot, tmp_path):
-    # a dialog opened past the prompts would wait for a user: it is noted and closed, and the test fails
-    opened: list[str] = []
-    guard = QTimer()
-    guard.timeout.connect(lambda: (box := QApplication.activeModalWidget()) is not None
-                          and (opened.append(box.windowTitle()), box.close()))
-    guard.start(50)
-    prompts = ScriptedPrompts()
-    settings = QSettings(str(tmp_path / "settings.ini"), QSettings.Format.IniFormat)
-    w = MainWindow(settings=settings, realtime_factor=50.0, prompts=prompts)
-    w.ask_to_save = False
-    qtbot.addWidget(w)
-    w.show()
-    qtbot.waitExposed(w)
-    assert w.development.connect_default()
-    yield w, prompts
-    guard.stop()
-    assert not opened, f"dialogs opened past the window's prompts: {opened}"
-    for editor in w.editors():  # no "Save changes?" question at teardown
-        editor.document().setModified(False)
-    w.bridge.detach(close=False)
-    w.controllers.close()
 
 
 def test_the_cam_editors_write_to_controller_asks_through_the_windows_prompts(scripted, qtbot):
