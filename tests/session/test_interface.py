@@ -9,7 +9,9 @@ import pytest
 
 from motiontool.aposs.driver import compile_source
 from motiontool.comms.protocol import LinkError
-from motiontool.session.controllers import ControllerRegistry
+from motiontool.dpl.image import DplImage
+from motiontool.resources import resources_path
+from motiontool.session.controllers import APC_SIM, ControllerRegistry, InterfaceConfig
 from motiontool.session.interface import InterfaceCommands
 from motiontool.session.session import Session
 
@@ -63,6 +65,24 @@ def test_delete_programs_all_deletes_the_stored_programs(registry):
     assert commands.delete_programs_all() == []
     assert said == ["Delete Programs all: deleted the programs of controllers 2",
                     "Delete Programs all: no saved programs"]
+
+
+def test_delete_programs_all_on_the_apc_claims_nothing_it_did_not_delete(registry):
+    """DG 2530: Delete Programs all "will delete all programs saved on all controllers" of the interface. The
+    simulated APC lists its one DPL program without a program number, and it cannot be deleted: the command must
+    not say it deleted the programs of a controller that still has its program."""
+    said: list[str] = []
+    apc = InterfaceConfig(kind=APC_SIM, first=1, last=1)
+    registry.open_interface(config=apc)
+    session = Session(registry)
+    assert session.select(1, interface=apc.key)
+    source = resources_path("samples", "apc_7_1_position.dpl").read_text(encoding="utf-8")
+    session.link.download(DplImage("apc_7_1_position.dpl", source).to_bytes(), name="apc_7_1_position.dpl")
+    listed = session.link.list_programs()
+    assert [p.number for p in listed] == [None]
+    assert InterfaceCommands(session, said.append).delete_programs_all() == []
+    assert session.link.list_programs() == listed
+    assert said == ["Delete Programs all: no saved programs"]
 
 
 def test_a_controller_that_refuses_is_said_and_the_others_go_on(registry):

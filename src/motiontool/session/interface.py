@@ -79,11 +79,11 @@ class InterfaceCommands:
     def delete_programs_all(self) -> list[int]:
         """Delete Programs all (DG 2528-2534): the saved programs of every controller of the interface."""
         def delete(link: Link) -> bool:
-            programs = link.list_programs()
-            for program in programs:
-                if program.number is not None:   # a listed program is a stored one: it has its number
-                    link.delete_program(program.number)
-            return bool(programs)
+            # the APC lists its one DPL program without a number: not a saved program, so not claimed deleted
+            saved = [p.number for p in link.list_programs() if p.number is not None]
+            for number in saved:
+                link.delete_program(number)
+            return bool(saved)
         done = self._each(delete, "Delete Programs all", all_in_range=True)
         self.say(f"Delete Programs all: deleted the programs of controllers {_ids(done)}" if done
                  else "Delete Programs all: no saved programs")
