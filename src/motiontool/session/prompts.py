@@ -3,7 +3,7 @@ injected prompts object").
 
 A command (Execute's "Stop it?", Reset's "Continue?", a file to save to) asks through a `Prompts` it was given,
 never by opening a dialog itself: the IDE gives every window a `qtjobs.prompts.QtPrompts` (the same message boxes,
-input dialogs and file dialogs as before), a test or a headless caller a `ScriptedPrompts` with the answers it
+input dialogs and file dialogs as before), a test or a script without a window a `ScriptedPrompts` with the answers it
 wants. Each method returns None (or False) for Cancel, so "the user cancelled" is one test at the caller.
 """
 
@@ -77,7 +77,7 @@ class PromptRefused(AssertionError):
 
 @dataclass
 class ScriptedPrompts:
-    """Answers given in advance, in the order they will be asked (a Prompts for tests and headless callers).
+    """Answers given in advance, in the order they will be asked (a Prompts for tests and scripts without a window).
 
     `answers` holds what each question returns (True/False, a choice's text, a path, a number, None for Cancel);
     a question with no answer left raises PromptRefused naming it, so a test sees an unexpected dialog at once.

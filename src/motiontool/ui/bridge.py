@@ -17,7 +17,6 @@ from PySide6.QtCore import QObject, Signal
 from motiontool.comms.link import Link
 from motiontool.comms.protocol import LinkEvent, Status
 from motiontool.session.prompts import Prompts
-from motiontool.session.session import Session
 from motiontool.ui.link_jobs import waiting
 from motiontool.ui.status_worker import StatusWorker
 
@@ -49,7 +48,6 @@ class LinkBridge(QObject):
         self.status_worker.polled.connect(self._polled)
         self.status_worker.failed.connect(self._lost)
         self.last_status: Status | None = None
-        self.session: Session | None = None                   # the window's (set by ui/connection.py)
         self.prompts: Prompts | None = None
         self._connect: Callable[[], bool] | None = None
 
@@ -57,9 +55,10 @@ class LinkBridge(QObject):
     def connected(self) -> bool:
         return self.link is not None
 
-    def serve(self, session: Session, connect: Callable[[], bool], prompts: Prompts) -> None:
-        """Be the Qt face of the window's session: `connect` connects it as the window's commands do."""
-        self.session, self._connect, self.prompts = session, connect, prompts
+    def serve(self, connect: Callable[[], bool], prompts: Prompts) -> None:
+        """Be the Qt face of the window's session (set by ui/connection.py): `connect` connects it as the
+        window's commands do; `prompts` is the window's."""
+        self._connect, self.prompts = connect, prompts
 
     def connect_default(self) -> bool:
         """A tool window that needs a controller connects its APOSS window first (DG 2054-2062, 5265-5273)."""

@@ -29,7 +29,7 @@ class Connection:
         self.session = Session(self.registry)
         self.session.listeners.append(self._session_event)
         self.interface = InterfaceCommands(self.session, window.messages.ide, self._run)
-        window.bridge.serve(self.session, self.connect_default, window.prompts)   # what tool windows are given
+        window.bridge.serve(self.connect_default, window.prompts)   # what tool windows are given
         self.reconnect_button = QToolButton(window)
         self.reconnect_button.setText("Reconnect")
         self.reconnect_button.setToolTip("Connect again to the same controller on the same interface")

@@ -3,8 +3,9 @@
 The debug session compiles the current program in debug mode (statement stops), downloads it, starts it
 stopped before its first statement and then follows the controller's status: whenever the program stands in
 "break" the editor shows the next statement in yellow.  Breakpoints are sent to the controller whenever they
-change.  Everything goes through the window's LinkBridge; each request runs on a thread while the window paints
-and says what it waits for (ui/link_jobs.waiting, decision I34).
+change.  The requests and the debug run's state are the session's (session/debug.py DebugSession, on the
+window's controller); each request runs on a thread while the window paints and says what it waits for
+(ui/link_jobs.waiting, decision I34). This adds the editor: its marks, the yellow line, the value popup, the Watch.
 """
 
 from __future__ import annotations
@@ -42,7 +43,7 @@ class Debugger(QObject):
         self.w = window
         self.editor = None   # the editor whose program is being debugged
         # the debug run's requests and state (session/debug.py); it says what went wrong in the Communication pane
-        self.run = DebugSession(window.connection.session, window.messages.ide,
+        self.debug = DebugSession(window.connection.session, window.messages.ide,
                                 lambda doing, work: waiting(window, doing, work))
         self.watch = WatchPane(window)
         self.watch.set_reader(self.read_watch)
@@ -87,7 +88,7 @@ class Debugger(QObject):
             editor.debug.set_debug_lines(set(lines))
             return [n for n in editor.debug.breakpoints() if n in editor.debug.debug_lines]
 
-        if not self.run.prepare(image, dev.compiler_settings().stack_size, loaded):
+        if not self.debug.prepare(image, dev.compiler_settings().stack_size, loaded):
             editor.debug.end_debug()
             return False
         self.editor = editor
@@ -104,14 +105,14 @@ class Debugger(QObject):
     def go(self) -> None:
         """Go (DG L2436-2438): run to the next breakpoint."""
         if self.active:
-            self.run.go()
+            self.debug.go()
             self.w.bridge.poll()
 
     def step(self) -> None:
         """Singlestep F9 (DG L2440-2442): run the yellow statement, stop before the next one."""
         if self.active:
             self.editor.debug.set_debug_current(None)
-            self.run.step()
+            self.debug.step()
             self.w.bridge.poll()
 
     def end(self) -> None:
@@ -122,11 +123,11 @@ class Debugger(QObject):
         editor.breakpointsChanged.disconnect(self._send_breakpoints)
         editor.variableEditRequested.disconnect(self.change_value)
         editor.debug.end_debug()
-        self.run.end()
+        self.debug.end()
         self.w.messages.ide("Debug ended")
 
     def _send_breakpoints(self) -> None:
-        self.run.set_breakpoints(self.editor.debug.breakpoints())
+        self.debug.set_breakpoints(self.editor.debug.breakpoints())
         self.w.bridge.poll()
 
     def _status_changed(self, status) -> None:
@@ -172,7 +173,7 @@ class Debugger(QObject):
 
     def read_value(self, name: str) -> str | None:
         """The value for the editor's click popup (DG L3440-3444), None when `name` is not a variable."""
-        value = self.run.read_value(name)
+        value = self.debug.read_value(name)
         return None if value is None else format_value(value)
 
     def change_value(self, name: str) -> None:
@@ -188,7 +189,7 @@ class Debugger(QObject):
         except ValueError:
             self.w.messages.ide(f"Change value: {text!r} is not a number")
             return False
-        if not self.run.write_value(name, value):
+        if not self.debug.write_value(name, value):
             return False
         self.refresh_watch()
         return True
