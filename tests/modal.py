@@ -103,6 +103,14 @@ def _text(dialog: QWidget) -> str:
     return dialog.text() if isinstance(dialog, QMessageBox) else ""
 
 
+def when_idle(reply: Reply) -> Reply:
+    """A reply given only once no command waits for its controller (the busy cursor gone): the answerer's timer
+    also fires while a command of the dialog waits (ui/link_jobs.waiting), and a click then is dropped, as a
+    person's would be (decision I34); a person waits for the dialog to show what it read before the next click."""
+    reply.when_idle = True  # type: ignore[attr-defined]
+    return reply
+
+
 class Answerer:
     def __init__(self, replies: list[Reply], fallback: Reply | None = None) -> None:
         self.replies = list(replies)
@@ -117,6 +125,8 @@ class Answerer:
     def _poll(self) -> None:
         dialog = QApplication.activeModalWidget()
         if dialog is None or self._busy or not dialog.isVisible():
+            return
+        if self.replies and getattr(self.replies[0], "when_idle", False) and QApplication.overrideCursor():
             return
         reply = self.replies.pop(0) if self.replies else self.fallback
         if reply is None:  # a dialog the test did not expect: closed, and the test fails (it would hang)

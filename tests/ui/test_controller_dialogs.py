@@ -13,7 +13,7 @@ from motiontool.ui.controller_menu import ProgramsDialog
 from motiontool.ui.download_dialog import DownloadDialog, parse_ids
 from motiontool.ui.error_history import ErrorHistoryDialog
 from motiontool.ui.parameter_dialogs import NameDialog, ParametersDialog
-from tests.modal import answering, answering_inner, button_reply, file_reply, text_reply
+from tests.modal import answering, answering_inner, button_reply, file_reply, text_reply, when_idle
 from tests.ui.test_user_defects import run_failing
 
 
@@ -235,6 +235,7 @@ def test_programs_save_with_source_and_upload_it_into_a_new_tab(window, qtbot, t
         seen["checked"] = dialog.include_source.isChecked()
         later(lambda: click(qtbot, button(dialog, "Save")))
 
+    @when_idle   # Save's store and refresh are answered first: the program is listed, a click is not dropped
     def upload(dialog):
         assert isinstance(dialog, ProgramsDialog)
         seen["row"] = [dialog.table.item(0, c).text() for c in range(4)]
