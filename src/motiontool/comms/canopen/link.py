@@ -39,6 +39,7 @@ from canopen.objectdictionary import ODVariable
 from canopen.sdo import SdoAbortedError, SdoCommunicationError
 
 from motiontool.comms.canopen import objects
+from motiontool.comms.canopen.block_upload import block_upload
 from motiontool.comms.canopen.freerun import PdoStream
 from motiontool.comms.canopen.slcan import SlcanSocketBus
 from motiontool.comms.canopen.watch import TransportWatch, answer_reader, sent_at
@@ -341,8 +342,7 @@ class CanopenLink(RemoteLink):
     def _read_domain(self, sdo, index: int) -> bytes:
         if self._blocks:
             try:
-                with sdo.open(index, 0, "rb", buffering=0, block_transfer=True) as raw:
-                    return b"".join(iter(lambda: raw.read(7), b""))
+                return block_upload(sdo, index)
             except (SdoAbortedError, SdoCommunicationError) as exc:
                 if not _no_blocks(exc) or self._collision():   # another master's answer is no refusal
                     raise
