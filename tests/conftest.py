@@ -41,3 +41,18 @@ def pytest_collection_modifyitems(config, items):
             item.add_marker(pytest.mark.gui)
     weight = {"soak": 0, "slow": 1}
     items.sort(key=lambda item: min((w for m, w in weight.items() if item.get_closest_marker(m)), default=2))
+
+
+@pytest.fixture(autouse=True)
+def _garbage_collected_on_the_gui_thread(request):
+    """A GUI test runs as the IDE does (ui/app.py): Python's cyclic collector only on the GUI thread
+    (ui/gui_gc.py). With automatic collection, a worker thread (the embedded controller's kernel, a link job)
+    that passed an allocation threshold destroyed garbage widgets of an earlier test; their destructor waited for
+    the GIL while holding a Qt lock that the GUI thread, holding the GIL, waited for: a clean-clone run hung for
+    5 minutes in two workers (py-spy: the kernel thread in gc_collect_main -> QObject::~QObject -> GilState::acquire,
+    the GUI thread in Shiboken's runDeletionInMainThread -> QObject::~QObject -> QBasicMutex::lockInternal)."""
+    if request.node.get_closest_marker("gui") is not None:
+        from motiontool.ui.gui_gc import install
+
+        install(request.getfixturevalue("qapp"))
+    yield

@@ -44,3 +44,12 @@ def test_a_widget_in_a_garbage_cycle_dies_on_the_gui_thread(qapp, qtbot):
     finally:
         collector.stop()
     assert gc.isenabled()
+
+
+def test_gui_tests_collect_on_the_gui_thread_as_the_ide_does(qapp):
+    """tests/conftest.py installs the collector for every GUI test, as ui/app.py does for the IDE: a worker
+    thread's collection of an earlier test's widgets deadlocked a clean-clone run (the GIL against a Qt lock)."""
+    from motiontool.ui.gui_gc import GuiThreadCollector
+
+    assert not gc.isenabled()
+    assert qapp.findChild(GuiThreadCollector) is not None
