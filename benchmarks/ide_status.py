@@ -54,12 +54,15 @@ def main() -> None:
 
     from motiontool.controller import schemes
     from motiontool.session.controllers import InterfaceConfig
+    from motiontool.ui import gui_gc
     from motiontool.ui.main_window import MainWindow
     from motiontool.ui.parameter_dialogs import ParametersDialog
 
     schemes.register()  # the window's simulators, as the `motiontool` command registers them
 
     app = QApplication.instance() or QApplication(sys.argv)
+
+    gui_gc.install(app)   # garbage collected on the GUI thread, as in the IDE (ui/app.py): never by a worker
     proc, url = start_drive(args.baud)
     with tempfile.TemporaryDirectory() as tmp:
         window = MainWindow(settings=QSettings(f"{tmp}/settings.ini", QSettings.Format.IniFormat))

@@ -25,6 +25,7 @@ from PySide6.QtCore import QElapsedTimer, QSettings, QTimer  # noqa: E402
 from PySide6.QtWidgets import QApplication  # noqa: E402
 
 from motiontool.controller import schemes  # noqa: E402
+from motiontool.ui import gui_gc  # noqa: E402
 from motiontool.ui.main_window import MainWindow  # noqa: E402
 
 PROGRAM = 'main:\nPRINT "flood line ", TIME\nGOTO main\n'
@@ -36,6 +37,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seconds", type=float, default=5.0)
     args = parser.parse_args(argv)
     app = QApplication.instance() or QApplication([])
+    gui_gc.install(app)   # garbage collected on the GUI thread, as in the IDE (ui/app.py): never by a worker
     scratch = tempfile.TemporaryDirectory()
     window = MainWindow(settings=QSettings(f"{scratch.name}/s.ini", QSettings.Format.IniFormat), realtime_factor=1.0)
     window.ask_to_save = False

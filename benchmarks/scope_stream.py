@@ -27,6 +27,7 @@ from motiontool.controller.embedded import EmbeddedLink  # noqa: E402
 from motiontool.scope.acquisition import FreeRun, new_curve  # noqa: E402
 from motiontool.scope.curves import Group, Scope  # noqa: E402
 from motiontool.scope.ui.window import ScopeWindow  # noqa: E402
+from motiontool.ui import gui_gc  # noqa: E402
 
 PROGRAM = "VEL 50\nACC 50\nDEC 50\nWHILE 1 DO\nPOSA 200000\nPOSA 0\nENDWHILE\n"
 SIGNALS = ("APOS", "CPOS", "TRACKERR", "AVEL")
@@ -46,6 +47,7 @@ def build(groups: int = 4, capacity: int = 20_000):
     embedded controllers at real time, each running PROGRAM and streaming one Free Run group of SIGNALS; their
     packets reach the GUI thread through `relay` (connect to relay.packet, then start the runs)."""
     app = QApplication.instance() or QApplication(sys.argv)
+    gui_gc.install(app)   # garbage collected on the GUI thread, as in the IDE (ui/app.py): never by a worker
     scope = Scope("free_run")
     scope.settings.default_samples = capacity
     window = ScopeWindow(None, "free_run", scope=scope, ask=False)
