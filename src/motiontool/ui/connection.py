@@ -131,7 +131,8 @@ def new_registry(settings, realtime_factor: float):
 
 def new_window(w):
     """Window → New APOSS Window (DG 1999): another program and another controller, the same interfaces."""
-    other = type(w)(settings=w.settings, realtime_factor=w.realtime_factor, controllers=w.controllers)
+    other = type(w)(settings=w.settings, realtime_factor=w.realtime_factor, controllers=w.controllers,
+                    macros=w.macros)
     other.ask_to_save = w.ask_to_save
     other.new_file()
     other.show()

@@ -28,6 +28,7 @@ from motiontool.ui.bridge import LinkBridge
 from motiontool.ui.development import Development
 from motiontool.ui.editor.bookmarks import BookmarkStore
 from motiontool.ui.editor.code_editor import CodeEditor
+from motiontool.ui.editor.macros import MacroSlots
 from motiontool.ui.messages import MessagesPane
 from motiontool.ui.prompts import QtPrompts
 from motiontool.ui.recovery import Autosave, Recovery
@@ -43,7 +44,7 @@ class MainWindow(QMainWindow):
     ask_to_save = True  # tests and scripted runs switch the "Save changes?" question off
 
     def __init__(self, settings: QSettings | None = None, realtime_factor: float = 1.0, controllers=None,
-                 prompts: Prompts | None = None) -> None:
+                 prompts: Prompts | None = None, macros: MacroSlots | None = None) -> None:
         super().__init__()
         self.settings = settings or QSettings()
         self.prompts: Prompts = prompts or QtPrompts(self)   # what commands ask the user goes through this
@@ -69,6 +70,8 @@ class MainWindow(QMainWindow):
 
         self.messages = MessagesPane(self)
         self.messages.locationActivated.connect(self._show_location)
+        # the IDE's macros, shared by its editors and windows and kept in the settings file (DG L2204)
+        self.macros = macros if macros is not None else MacroSlots.kept_in(self.settings, self.messages.ide)
         messages_dock = self._dock("Communication", self.messages, Qt.DockWidgetArea.BottomDockWidgetArea)
         self.outline = QListWidget(self)
         self.outline.itemActivated.connect(self._outline_jump)
@@ -220,6 +223,7 @@ class MainWindow(QMainWindow):
     def _add_editor(self, title: str, text: str, path: Path | None) -> CodeEditor:
         editor = CodeEditor(self, settings=self.editor_settings())
         editor.prompts = self.prompts.within(editor)   # its Go to Line, Repeat, Print, Find in Files' folder
+        editor.macros = self.macros
         editor.setPlainText(text)
         editor.mark_saved()
         editor.setProperty("path", str(path) if path else "")

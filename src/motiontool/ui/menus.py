@@ -48,7 +48,7 @@ def build_menus(w) -> None:
             ("Previous Bookmark", "Shift+F2", on_editor("bookmarks.previous_bookmark")),
             ("Toggle Bookmark", "Ctrl+F2", on_editor("bookmarks.toggle_bookmark")),
             ("Clear All Bookmarks", None, on_editor("bookmarks.clear_bookmarks")), None,
-            ("Convert Tabs", None, on_editor("edit.convert_tabs")),
+            ("Convert Tabs", None, on_editor("edit.convert_tabs")), ("Clear Macros", None, lambda: _clear_macros(w)),
         ]),
         ("&Development", [
             ("&Execute", "F5", lambda: dev.execute()), ("&Break", "Esc", dev.break_program),
@@ -206,6 +206,14 @@ def _command_list(w) -> None:
     dialog.execute_requested.connect(w.development.execute_line)
     w.command_list = dialog
     dialog.show()
+
+
+def _clear_macros(w) -> None:
+    """Edit → Clear Macros (DG L2225): "All currently defined macros can be cleared" - the IDE's, in every tab,
+    and in the settings file."""
+    for editor in w.editors():
+        editor.recorder.clear_macros()   # also the last recorded macro, which a tab plays without a shortcut
+    w.macros.clear()
 
 
 def _cam_editor(w) -> None:

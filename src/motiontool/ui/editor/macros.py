@@ -3,14 +3,16 @@
 Ctrl-Shift-R starts recording [DG L2206]; in the editor the same key stops it (the manual's "Record Macro"
 dialog with its stop button is left to the main window, which can call ``editor.recorder.stop_recording``).
 Stopping from the keyboard opens the "Save Macro" dialog [DG L2208-2216]: press the new shortcut (up to two keystrokes),
-see what it is currently assigned to, choose one of the 10 "Save As" slots. ``MacroSlots.to_json`` and
-``from_json`` let the application keep the macros across restarts [DG L2204].
+see what it is currently assigned to, choose one of the 10 "Save As" slots. The macros belong to the IDE, not
+to one program: a window's editors share one MacroSlots, kept in the settings file (``MacroSlots.kept_in``), so
+they "are saved and restored the next time that the APOS-IDE is started" [DG L2204].
 """
 
 from __future__ import annotations
 
 import json
-from typing import TYPE_CHECKING, NamedTuple
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 from PySide6.QtCore import QEvent, Qt
 from PySide6.QtGui import QKeyEvent, QKeySequence
@@ -29,6 +31,7 @@ if TYPE_CHECKING:
     from motiontool.ui.editor.code_editor import CodeEditor
 
 MAX_MACROS = 10
+MACROS_KEY = "editor/macros"
 RECORD_SHORTCUT = "Ctrl+Shift+R"
 _MODIFIER_MASK = (Qt.KeyboardModifier.ShiftModifier | Qt.KeyboardModifier.ControlModifier
                   | Qt.KeyboardModifier.AltModifier | Qt.KeyboardModifier.MetaModifier)
@@ -69,6 +72,11 @@ class MacroSlots:
 
     def __init__(self) -> None:
         self._slots: list[tuple[str, list[KeyStroke]] | None] = [None] * MAX_MACROS
+        self.listeners: list[Callable[[], None]] = []   # told after every change (the settings file keeps them)
+
+    def _changed(self) -> None:
+        for listener in list(self.listeners):
+            listener()
 
     def slot_of(self, shortcut: str) -> int | None:
         name = normalize_shortcut(shortcut)
@@ -88,6 +96,7 @@ class MacroSlots:
         if old is not None:
             self._slots[old] = None  # one shortcut, one macro
         self._slots[slot] = (name, list(keys))
+        self._changed()
         return slot
 
     def get(self, shortcut: str) -> list[KeyStroke] | None:
@@ -108,6 +117,7 @@ class MacroSlots:
     def clear(self) -> None:
         """Edit → Clear Macros [DG L2225]."""
         self._slots = [None] * MAX_MACROS
+        self._changed()
 
     def __len__(self) -> int:
         return len(self.shortcuts())
@@ -121,6 +131,20 @@ class MacroSlots:
         for i, entry in enumerate(json.loads(text)[:MAX_MACROS]):
             if entry:
                 slots.assign(entry[0], [KeyStroke(int(k), int(m), str(t)) for k, m, t in entry[1]], slot=i)
+        return slots
+
+
+    @classmethod
+    def kept_in(cls, settings: Any, say: Callable[[str], None]) -> MacroSlots:
+        """The macros of the settings file (`settings`: a QSettings), written back after every change. A damaged
+        entry is said; the IDE then starts without macros, and the next macro saved replaces the entry."""
+        text = settings.value(MACROS_KEY, "", type=str)
+        try:
+            slots = cls.from_json(text) if text else cls()
+        except (ValueError, TypeError, IndexError) as exc:
+            say(f"Macros not restored: {MACROS_KEY} in the settings file is damaged ({exc})")
+            slots = cls()
+        slots.listeners.append(lambda: settings.setValue(MACROS_KEY, slots.to_json()))
         return slots
 
 
