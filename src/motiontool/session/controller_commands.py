@@ -83,24 +83,32 @@ class ControllerCommands(_Commands):
     def save_parameters(self, path: Path | None = None) -> bool:
         """Parameters ▸ Save to file (DG 2884-2892): global, axis and user parameters, the FC 300's changed
         parameters (C19) and all arrays → .zbc."""
+        transfer, zbc = config_io()
+        return self._to_file("Save to file", path, ("controller.zbc", CONFIG_FILTER), "reading its configuration",
+                             transfer.upload_config, zbc.write_config, "configuration saved to")
+
+    def _to_file(self, title: str, path: Path | None, offer: tuple[str, str], doing: str,
+                 read: Callable[[Link], Any], write: Callable[[Path, Any], None], done: str) -> bool:
+        """A command that writes what it reads from the controller into a file: connect, ask where (`offer`:
+        the suggested name and the filters), read off the caller's thread, write; a file not written is said
+        with a warning, a refused read in the Communication pane."""
         link = self._link()
         if link is None:
             return False
         if path is None:
-            path = self.prompts.save_path("Save to file", "controller.zbc", CONFIG_FILTER)
+            path = self.prompts.save_path(title, *offer)
             if path is None:
                 return False
-        transfer, zbc = config_io()
+        zbc = config_io()[1]
         try:
-            config = self._wait("reading its configuration", lambda: transfer.upload_config(link))
-            zbc.write_config(path, config)
+            write(path, self._wait(doing, lambda: read(link)))
         except OSError as exc:
-            self._write_failed("Save to file", path, exc)
+            self._write_failed(title, path, exc)
             return False
         except (LinkError, zbc.ConfigError) as exc:
-            self.say(f"Save to file: {exc}")
+            self.say(f"{title}: {exc}")
             return False
-        self.say(f"Controller {self.session.controller_id}: configuration saved to {path}")
+        self.say(f"Controller {self.session.controller_id}: {done} {path}")
         return True
 
     def restore_parameters(self, path: Path | None = None, controller_id: int | None = None,
@@ -172,26 +180,10 @@ class ControllerCommands(_Commands):
 
     def diagnostic_report(self, path: Path | None = None) -> bool:
         """Diagnostic Report (DG 3029-3031) into a text file."""
-        link = self._link()
-        if link is None:
-            return False
-        if path is None:
-            path = self.prompts.save_path("Diagnostic Report", "diagnostic-report.txt", "Text (*.txt)")
-            if path is None:
-                return False
-        zbc = config_io()[1]
         cid = self.session.controller_id
-        try:
-            text = self._wait("reading its state for the report", lambda: diagnostic_report_text(link, cid))
-            atomic_write_text(path, text)
-        except OSError as exc:
-            self._write_failed("Diagnostic Report", path, exc)
-            return False
-        except (LinkError, zbc.ConfigError) as exc:
-            self.say(f"Diagnostic Report: {exc}")
-            return False
-        self.say(f"Controller {cid}: diagnostic report written to {path}")
-        return True
+        return self._to_file("Diagnostic Report", path, ("diagnostic-report.txt", "Text (*.txt)"),
+                             "reading its state for the report", lambda link: diagnostic_report_text(link, cid),
+                             atomic_write_text, "diagnostic report written to")
 
 
 def diagnostic_report_text(link: Link, controller_id: int) -> str:
