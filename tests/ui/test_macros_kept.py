@@ -62,6 +62,14 @@ def test_a_macro_recorded_in_one_tab_plays_in_another_and_after_a_restart_until_
     key(qtbot, other, Qt.Key.Key_M, ALT)
     assert other.toPlainText() == "ab"
 
+    first.actions_by_text["New APOSS Window"].trigger()   # another window of the same IDE
+    second = first.other_windows[-1]
+    qtbot.addWidget(second)
+    in_second = typed_tab(qtbot, second)
+    key(qtbot, in_second, Qt.Key.Key_M, ALT)
+    assert in_second.toPlainText() == "ab"
+    assert second.macros is first.macros                  # one set: a macro saved in either is the other's
+
     restarted = window(qtbot, QSettings(str(tmp_path / "settings.ini"), QSettings.Format.IniFormat))
     editor = typed_tab(qtbot, restarted)
     key(qtbot, editor, Qt.Key.Key_M, ALT)
