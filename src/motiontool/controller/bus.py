@@ -73,7 +73,7 @@ class EmbeddedBus:
         self.links: dict[int, NodeLink[ControllerService]] = {}
         for node in self.simulation.nodes:
             link = NodeLink(self, node, ControllerService(self.simulation[node]))
-            self.simulation.set_ticker(node, link.service.tick)
+            self.simulation.set_ticker(node, link.service.tick, link.service.adds_nothing)
             self.links[node] = link
 
     @property

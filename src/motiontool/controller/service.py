@@ -80,6 +80,13 @@ class ControllerService:
         if self.stream is not None:
             self.stream.tick(c.time_ms)
 
+    def adds_nothing(self) -> bool:
+        """tick() is the controller's tick alone now (Simulation.set_ticker's `steady`): nothing streams or
+        records and the program store has nothing to follow."""
+        store = self.store
+        return (self.recording is None and self.stream is None and not store.waiting_for_input
+                and self.controller.program_state == store.seen_state)
+
     def flush_stream(self) -> None:
         if self._packets is not None:
             self._packets.flush()

@@ -37,6 +37,18 @@ class Until(Wait):
             self.on_abandon()
 
 
+class InputWait(Until):
+    """WAITI: ends only when an input changes (kernel/steady_line.py runs stretches of ticks while none can)."""
+
+
+class Deadline(Until):
+    """DELAY: ends at time_ms >= end (kernel/steady_line.py runs stretches of ticks up to it)."""
+
+    def __init__(self, ctl, end: int):
+        super().__init__(lambda: ctl.time_ms >= end)
+        self.end = end
+
+
 class WaitT(Wait):
     """WAITT restarts its time after an interrupt (DG 6301-6303)."""
 

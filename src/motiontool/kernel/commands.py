@@ -9,6 +9,8 @@ from __future__ import annotations
 from motiontool.kernel import io as iomod
 from motiontool.kernel.command_base import (
     COMMANDS,
+    Deadline,
+    InputWait,
     Until,
     WaitT,
     command,
@@ -175,8 +177,7 @@ def rstorigin(ctl, vm, args):
 # --- waiting and time ----------------------------------------------------------------------------------
 @command("DELAY")
 def delay(ctl, vm, args):
-    end = ctl.time_ms + max(0, args[0])
-    return Until(lambda: ctl.time_ms >= end)  # interrupts count toward the delay (C:980-989)
+    return Deadline(ctl, ctl.time_ms + max(0, args[0]))  # interrupts count toward the delay (C:980-989)
 
 
 @command("WAITT")
@@ -188,7 +189,7 @@ def waitt(ctl, vm, args):
 def waiti(ctl, vm, args):
     number = args[0]
     state = 1 if len(args) < 2 or args[1] == "ON" else 0
-    return Until(lambda: ctl.io.inputs.get(number, 0) == state)
+    return InputWait(lambda: ctl.io.inputs.get(number, 0) == state)
 
 
 @command("WAITP")

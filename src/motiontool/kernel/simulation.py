@@ -21,13 +21,15 @@ that start together count the same MAPOS. A node that runs PULSVEL itself feeds 
 its own input and stops following the wire until PULSACC 0 + PULSVEL switches it off (docs/decisions.md).
 
 Tick order: the shared encoder (or the master node) first, then the other nodes in ascending node id, so a slave
-sees in tick t the master increment of tick t, as on a single controller.
+sees in tick t the master increment of tick t, as on a single controller. While every node is in a CAM line's
+steady state, `run_for` runs stretches of ticks node by node (kernel/steady_line.py) with the same results.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Mapping
 
+from motiontool.kernel import steady_line
 from motiontool.kernel.canbus import CanBus
 from motiontool.kernel.canport import CANNR
 from motiontool.kernel.controller import Controller
@@ -95,6 +97,7 @@ class Simulation:
         self.order = ([master_node] if master_node is not None else []) + [n for n in ids if n != master_node]
         self._tickers: dict[int, Callable[[], None]] = {n: self.controllers[n].tick for n in self.order}
         self._sequence = [self._tickers[n] for n in self.order]
+        self._steady: dict[int, Callable[[], bool]] = {}  # a replaced ticker's: it adds nothing to the tick now
 
     # --- access ------------------------------------------------------------------------------------------
     @property
@@ -113,12 +116,17 @@ class Simulation:
     def __iter__(self):
         return iter(self.nodes)
 
-    def set_ticker(self, node: int, tick: Callable[[], None]) -> None:
+    def set_ticker(self, node: int, tick: Callable[[], None], steady: Callable[[], bool] | None = None) -> None:
         """Replace what advances one node by one tick (a comms ControllerService.tick that also streams and
-        runs the Restart mechanism); it must tick that node's controller exactly once."""
+        runs the Restart mechanism); it must tick that node's controller exactly once. `steady` tells when it
+        adds nothing to the controller's tick (then stretches of ticks may run without it); without it, never."""
         self[node]  # ValueError naming an unknown node
         self._tickers[node] = tick
+        self._steady[node] = steady or (lambda: False)
         self._sequence = [self._tickers[n] for n in self.order]
+
+    def steady_tickers(self) -> list[Callable[[], bool]]:
+        return list(self._steady.values())
 
     # --- time --------------------------------------------------------------------------------------------
     def tick(self) -> None:
@@ -131,7 +139,29 @@ class Simulation:
             tick()
 
     def run_for(self, ms: int, until: Callable[[], bool] | None = None) -> None:
-        for _ in range(int(ms)):
+        ms = int(ms)
+        if until is None:
+            self._run(ms)
+            return
+        for _ in range(ms):
             self.tick()
-            if until is not None and until():
+            if until():
                 return
+
+    def _run(self, ms: int) -> None:
+        """`ms` ticks, in stretches where the line is steady; after a failed try the next waits 1, 2, 4 … 64 ticks
+        (a line that is not steady pays for few tries)."""
+        wait = 1
+        while ms > 0:
+            done = steady_line.run(self, ms) if ms >= steady_line.MIN_TICKS else 0
+            if done:
+                ms -= done
+                wait = 1
+                if ms and done < steady_line.MAX_TICKS:  # the stretch ended before a tick that runs generally
+                    self.tick()
+                    ms -= 1
+                continue
+            for _ in range(min(wait, ms)):
+                self.tick()
+            ms -= min(wait, ms)
+            wait = min(2 * wait, 64)

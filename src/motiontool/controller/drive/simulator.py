@@ -52,7 +52,7 @@ class VirtualDrive:
         self.nodes: dict[int, DriveNode] = {}
         for n in self.simulation.nodes:
             service = ControllerService(self.simulation[n])
-            self.simulation.set_ticker(n, service.tick)
+            self.simulation.set_ticker(n, service.tick, service.adds_nothing)
             self.nodes[n] = DriveNode(n, service, self)
         self._clock: PacedClock | None = None
         self._timed_out: set[int] = set()
