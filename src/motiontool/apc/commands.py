@@ -12,6 +12,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from motiontool.apc import core
+from motiontool.apc.driveparams import RS485_MODE
 from motiontool.apc.intmath import INT32_MAX, INT32_MIN
 from motiontool.apc.readpars import RAW_OFFSET, READ_PARAMETERS
 from motiontool.apc.sources import user_word
@@ -277,8 +278,10 @@ class ControlCommands(Conversions):
 
     def APCSetReferencePosition(self, Turns: int, Position: int, PositionFine: int) -> int:
         """User-program reference source: three 16-bit fields (L3093-3110)."""
-        # user_word() written out: the CTSync examples call this in every sample
-        self.ref.user_word = ((Turns & 0xFFFF) << 32) | ((Position & 0xFFFF) << 16) | (PositionFine & 0xFFFF)
+        # user_word() written out, fewer operations on 48-bit numbers: the CTSync examples call this in every
+        # sample with PositionFine 0
+        word = ((Turns & 0xFFFF) << 16 | Position & 0xFFFF) << 16
+        self.ref.user_word = word | PositionFine & 0xFFFF if PositionFine else word
         return OK
 
     def APCSetFeedbackPosition(self, Turns: int, Position: int, PositionFine: int) -> int:
@@ -313,7 +316,7 @@ class ControlCommands(Conversions):
     # --- CTSync (L3241-3288) ---------------------------------------------------------------------------------
     def CTSyncSetMasterReferences(self, Reference1: int, Reference2: int, AuxRef: int) -> int:
         """Master only (#81.06 = 25); the data reaches every node's CTSyncGetSlaveReferences next sample."""
-        if self.params.values.get((81, 6)) != 25:
+        if self.params.values.get(RS485_MODE) != 25:
             return -2            # USR_NOT_MASTER (L8028-8036)
         self.ctsync_out = (Reference1, Reference2, AuxRef & 0xFF)
         return OK

@@ -28,7 +28,7 @@ from motiontool.apc import fused
 from motiontool.apc.cam import Cam, CamError
 from motiontool.apc.camlaws import ERR_SIZE_ZERO
 from motiontool.apc.diglock import DigitalLock
-from motiontool.apc.driveparams import DriveParameters
+from motiontool.apc.driveparams import MAX_SPEED, DriveParameters
 from motiontool.apc.intmath import wrap32
 from motiontool.apc.loop import OutputChannel, PositionLoop
 from motiontool.apc.plant import Plant, PlantConfig, SlotEncoder
@@ -346,7 +346,7 @@ class KernelCore:
         channel = self.channel
         speed = self.loop.output if self.enabled else 0
         values = self.params.values
-        rpm = values.get((1, 6), 3000)
+        rpm = values.get(MAX_SPEED, 3000)
         if rpm != self._limit_rpm:
             self._limit_rpm, self._limit = rpm, rpm_to_speed(rpm)
         limit = self._limit

@@ -56,26 +56,39 @@ class CTSyncLine:
     def tick(self) -> None:
         """One sample on every node: deliver last sample's broadcast, run all nodes, collect the new one."""
         self.samples += 1
-        message, fault = self._in_flight, self.faults.pop(self.samples, None)
+        message, fault = self._in_flight, self.faults.pop(self.samples, None) if self.faults else None
+        drives = self.drives
+        period = drives[0].period_ns
+        steady_tick = fused.steady_tick    # ApcDrive.tick's first step, called here without the method's call
+        sent = None
         if message is not None and fault is None:
+            # the usual sample: each node gets the message just before it runs (no node reads another's)
             received = (*message, 1)
-            for d in self.drives:
+            for d in drives:
+                if d.period_ns != period:
+                    self._deliver_rest(d, received)
+                    raise CTSyncRateError(self)
                 d.ctsync_received = received
                 d.ctsync_counts[0] += 1
-        else:   # the previous data stay, with this sample's status
-            missing = fault == "missing" or message is None and self.samples > 1 and bool(self.masters())
-            for d in self.drives:
-                if message is None or fault == "missing":
-                    d.ctsync_received = (*d.ctsync_received[:3], 0)
-                    d.ctsync_counts[2] += missing
-                else:  # a message was sent, so this branch means a fault
-                    assert fault is not None
-                    d.ctsync_received = (*d.ctsync_received[:3], FAULT_STATUS[fault])
-                    d.ctsync_counts[1] += 1
-        sent = None
-        period = self.drives[0].period_ns
-        steady_tick = fused.steady_tick    # ApcDrive.tick's first step, called here without the method's call
-        for d in self.drives:
+                d.ctsync_out = None
+                if not steady_tick(d):
+                    d.tick()
+                out = d.ctsync_out
+                if out is not None:
+                    sent = out
+            self._in_flight = sent
+            return
+        # the previous data stay, with this sample's status
+        missing = fault == "missing" or message is None and self.samples > 1 and bool(self.masters())
+        for d in drives:
+            if message is None or fault == "missing":
+                d.ctsync_received = (*d.ctsync_received[:3], 0)
+                d.ctsync_counts[2] += missing
+            else:  # a message was sent, so this branch means a fault
+                assert fault is not None
+                d.ctsync_received = (*d.ctsync_received[:3], FAULT_STATUS[fault])
+                d.ctsync_counts[1] += 1
+        for d in drives:
             if d.period_ns != period:      # a REINIT in a node's program (L2077; checked here, sample by sample)
                 raise CTSyncRateError(self)
             d.ctsync_out = None
@@ -85,6 +98,12 @@ class CTSyncLine:
             if out is not None:
                 sent = out
         self._in_flight = sent
+
+    def _deliver_rest(self, first, received: tuple[int, int, int, int]) -> None:
+        """Before a rate error: the nodes from `first` on get the message too, as every node had before."""
+        for d in self.drives[self.drives.index(first):]:
+            d.ctsync_received = received
+            d.ctsync_counts[0] += 1
 
     @property
     def period_ns(self) -> int:

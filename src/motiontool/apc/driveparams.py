@@ -12,14 +12,17 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+# #1.06 and #81.06, read every sample: a dictionary look-up of the key object it holds skips comparing tuples
+MAX_SPEED, RS485_MODE = (1, 6), (81, 6)
+
 DEFAULTS: dict[tuple[int, int], int] = {
-    (1, 6): 3000,     # maximum speed, rpm (the output clamp's default 53687091 is 3000 rpm, L4242-4252)
+    MAX_SPEED: 3000,  # maximum speed, rpm (the output clamp's default 53687091 is 3000 rpm, L4242-4252)
     (1, 14): 3,       # reference selector: preset (what the examples set, L5097)
     (1, 15): 1,
     (1, 21): 0,       # preset speed 1, rpm×10 from the output channel
     (3, 22): 0,       # hard speed reference, rpm×10
     (3, 23): 0,       # hard speed reference select
-    (81, 6): 1,       # RS485 mode; 25 CTSync master, 26 slave (L8205)
+    RS485_MODE: 1,    # RS485 mode; 25 CTSync master, 26 slave (L8205)
     (81, 12): 3,      # POS rate: 1 ms (the examples' setting; the module's own default is 0 = disabled)
     (81, 13): 1,
     (81, 16): 1,      # encoder update every POS task (recommended, L938-946; the only rate modelled, A69)

@@ -16,10 +16,15 @@ from math import floor as _floor
 
 from motiontool.apc.cam import CamError
 from motiontool.apc.camlaws import INTERIOR, linear
+from motiontool.apc.driveparams import MAX_SPEED
 from motiontool.apc.plant import WORD48
 from motiontool.apc.sources import USER_PROGRAM
 
 STOP, CAM = 0, 3     # core's (core imports this module and asserts that they agree)
+
+# The int32 tests compare with ±0x3FFFFFFF first: CPython 3.11 compares one-digit ints (below 2^30) on a fast path,
+# ±2^31 are two-digit numbers and take the general comparison, needed only by larger values. `x < 0 and x < -clamp`:
+# the negation makes a new int each time (decisions K128, round 2).
 
 
 def steady_tick(d) -> bool:
@@ -77,15 +82,21 @@ def steady_tick(d) -> bool:
         fb.sample_start_position = fb.position
         fb.sample_start_integrated = integrated = fb.integrated
         fb.word = word
-        w = ((word + fb.marker_adjust) >> tb) & 0xFFFFFFFF
-        position = fb.position = (w ^ 0x80000000) - 0x80000000
+        adjust = fb.marker_adjust
+        position = (word + adjust if adjust else word) >> tb
+        if not 0 <= position <= 0x3FFFFFFF:         # else already its low 32 bits, read as a signed number
+            position &= 0xFFFFFFFF
+            if position > 0x7FFFFFFF:
+                position -= 0x100000000
+        fb.position = position
         delta = position - fb.input
-        if not -0x80000000 <= delta <= 0x7FFFFFFF:
+        if not (-0x3FFFFFFF <= delta <= 0x3FFFFFFF or -0x80000000 <= delta <= 0x7FFFFFFF):
             delta = ((delta + 0x80000000) & 0xFFFFFFFF) - 0x80000000
         fb.input = position
         total = integrated + delta
-        fb.integrated = (((total + 0x80000000) & 0xFFFFFFFF) - 0x80000000
-                         if not -0x80000000 <= total <= 0x7FFFFFFF else total)
+        if not (-0x3FFFFFFF <= total <= 0x3FFFFFFF or -0x80000000 <= total <= 0x7FFFFFFF):
+            total = ((total + 0x80000000) & 0xFFFFFFFF) - 0x80000000
+        fb.integrated = total
     d.task = "pos0"
     pos0()
     # what POS0 wrote counts in this sample
@@ -94,15 +105,21 @@ def steady_tick(d) -> bool:
             ref.refresh(ref.user_word, tb, False)
         else:
             word = ref.word = ref.user_word
-            w = ((word + ref.marker_adjust) >> tb) & 0xFFFFFFFF
-            position = ref.position = (w ^ 0x80000000) - 0x80000000
+            adjust = ref.marker_adjust
+            position = (word + adjust if adjust else word) >> tb
+            if not 0 <= position <= 0x3FFFFFFF:
+                position &= 0xFFFFFFFF
+                if position > 0x7FFFFFFF:
+                    position -= 0x100000000
+            ref.position = position
             delta = position - ref.input
-            if not -0x80000000 <= delta <= 0x7FFFFFFF:
+            if not (-0x3FFFFFFF <= delta <= 0x3FFFFFFF or -0x80000000 <= delta <= 0x7FFFFFFF):
                 delta = ((delta + 0x80000000) & 0xFFFFFFFF) - 0x80000000
             ref.input = position
             total = ref.integrated + delta
-            ref.integrated = (((total + 0x80000000) & 0xFFFFFFFF) - 0x80000000
-                              if not -0x80000000 <= total <= 0x7FFFFFFF else total)
+            if not (-0x3FFFFFFF <= total <= 0x3FFFFFFF or -0x80000000 <= total <= 0x7FFFFFFF):
+                total = ((total + 0x80000000) & 0xFFFFFFFF) - 0x80000000
+            ref.integrated = total
     elif ref.input_disabled:
         ref.refresh(ref.word, tb, False)
     if fb.selector == USER_PROGRAM:
@@ -118,7 +135,7 @@ def steady_tick(d) -> bool:
     else:   # _enabled_sample with the CAM running and no offsets
         ref_now = ref.integrated
         d_ref = ref_now - d._ref_last
-        if not -0x80000000 <= d_ref <= 0x7FFFFFFF:
+        if not (-0x3FFFFFFF <= d_ref <= 0x3FFFFFFF or -0x80000000 <= d_ref <= 0x7FFFFFFF):
             d_ref = ((d_ref + 0x80000000) & 0xFFFFFFFF) - 0x80000000
         d._ref_last = ref_now
         pg, cam, q = d.pg, d.cam, d.quarters
@@ -161,10 +178,10 @@ def steady_tick(d) -> bool:
             # ProfileGenerator.bypass
             old = pg.position
             position = old + out
-            if not -0x80000000 <= position <= 0x7FFFFFFF:
+            if not (-0x3FFFFFFF <= position <= 0x3FFFFFFF or -0x80000000 <= position <= 0x7FFFFFFF):
                 position = ((position + 0x80000000) & 0xFFFFFFFF) - 0x80000000
             step = position - old
-            if not -0x80000000 <= step <= 0x7FFFFFFF:
+            if not (-0x3FFFFFFF <= step <= 0x3FFFFFFF or -0x80000000 <= step <= 0x7FFFFFFF):
                 step = ((step + 0x80000000) & 0xFFFFFFFF) - 0x80000000
             pg.input_position = pg.position = pg.base = position
             pg.prev_speed = pg.speed
@@ -186,7 +203,7 @@ def steady_tick(d) -> bool:
         else:
             speed = loop.speed_ref = round(pg.speed * (1 << tb))
         error = ref_pos - fb.integrated
-        if not -0x80000000 <= error <= 0x7FFFFFFF:
+        if not (-0x3FFFFFFF <= error <= 0x3FFFFFFF or -0x80000000 <= error <= 0x7FFFFFFF):
             error = ((error + 0x80000000) & 0xFFFFFFFF) - 0x80000000
         loop.error = error
         if error:
@@ -195,7 +212,7 @@ def steady_tick(d) -> bool:
             clamp = loop.p_clamp
             if p > clamp:
                 p = clamp
-            elif p < -clamp:
+            elif p < 0 and p < -clamp:
                 p = -clamp
         else:
             p = 0
@@ -211,7 +228,7 @@ def steady_tick(d) -> bool:
         clamp = loop.output_clamp
         if out > clamp:
             out = clamp
-        elif out < -clamp:
+        elif out < 0 and out < -clamp:
             out = -clamp
         loop.output = out
         d.enabled = 1
@@ -226,12 +243,12 @@ def steady_tick(d) -> bool:
         d._latch_output()
         return True
     speed = d.loop.output if d.enabled else 0
-    rpm = d.params.values.get((1, 6), 3000)
+    rpm = d.params.values.get(MAX_SPEED, 3000)
     if rpm != d._limit_rpm:
         d._latch_output()
         return True
     limit = d._limit
-    if speed > limit or speed < -limit:
+    if speed > limit or speed < 0 and speed < -limit:
         speed = d._clamp_output(speed, limit)
     channel.sent = speed
     d._demand3, d._demand2, d._demand1 = d._demand2, d._demand1, speed

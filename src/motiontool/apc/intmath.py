@@ -46,7 +46,13 @@ def MULDIVRM(a: int, b: int, c: int) -> tuple[int, int]:
     accumulates the remainder to keep the speed exact."""
     if c == 0:
         raise ZeroDivisionError("MULDIVRM by zero")
-    q, r = div_trunc(a * b, c)
+    x = a * b
+    if x >= 0 and c > 0:    # div_trunc and wrap32 of this case without their calls (a virtual master per sample)
+        q = x // c
+        r = x - q * c
+        if q <= INT32_MAX and r <= INT32_MAX:
+            return q, r
+    q, r = div_trunc(x, c)
     return wrap32(q), wrap32(r)
 
 

@@ -118,6 +118,8 @@ class Plant:
         k1 = math.floor((after - phase) / REV)
         if k0 == k1:
             return []
+        if k1 - k0 in (1, -1):     # one marker, the usual case: the list below without building it
+            return [((k1 if k1 > k0 else k0) * REV + phase - before) / (after - before)]
         lo, hi = (k0 + 1, k1) if k1 > k0 else (k1 + 1, k0)
         marks = [k * REV + phase for k in range(lo, hi + 1)]
         return sorted((m - before) / (after - before) for m in marks)

@@ -99,6 +99,8 @@ class Source:
             return []
         due = [e for e in self.events if e[0] <= t_end]
         self.events = [e for e in self.events if e[0] > t_end]
+        if not (self.freeze_enabled and not self.freeze_flag or self.marker_enabled and not self.marker_flag):
+            return []   # neither latch armed: nothing below can change (every motor turn passes a marker)
         made = []
         span = max(t_end - t_start, 1)
         d_src = wrap32(self.position - self.sample_start_position)
