@@ -7,7 +7,8 @@
   of them and each axis runs the stamping CAM curve of DG 1435-1494 (fix points, MCO ≥ 5.00) with SYNCC 0 /
   SYNCCSTART 0, its program then waiting (WAITI on an input that never comes), like benchmarks/cam_rtf.py.
   `kernel_rtf_cam8: <factor> x` is virtual ms per wall ms for all 8 axes together, `kernel_tick_cam8` the cost of
-  one tick of all 8. Goal ≥ 20×.
+  one tick of all 8. The bus advances 2000 ms at once, so the steady line runs in stretches of ticks
+  (kernel/steady_line.py, decisions K129).
 * the same line with 32 controllers, all the virtual master serves (issue 30): `kernel_rtf_cam32: <factor> x`. Goals
   on an idle two-core machine (issue 30): 32 CAM axes ≥ 20×, 8 CAM axes ≥ 80×, one axis ≥ 500×.
 * beside each CAM figure the bare loop of the same shape (`bare_rtf_cam<N>`): a plain pure-Python 1 ms loop that
