@@ -186,3 +186,34 @@ def test_a_debug_run_stops_before_its_first_statement_and_steps(session):
     debug.end()
     assert not debug.active
     assert session.link.status().program_state != "running"      # stopped (Esc's "break"), not run on
+
+
+@pytest.mark.parametrize("answer", [False, True])
+def test_prepare_singlestep_asks_before_it_stops_a_running_program(session, answer: bool):
+    """As Execute does (DG 2385: "the user is asked if the existing program can be stopped"), Prepare Singlestep
+    asks before it stops the controller's program; No leaves it running, with its own program on the controller."""
+    cmds, _, _ = commands(session)
+    assert cmds.execute(lambda: program(LOOP, "loop.m"), Settings)
+    wait_state(session, "running")
+    said: list[str] = []
+    prompts = ScriptedPrompts.answering([answer])
+    debug = DebugSession(session, said.append, prompts=prompts)
+    result = compile_source("i = 1\ni = 2\n", "d.m", debug=True, name="d")
+    assert debug.prepare(result.image, 1024, lambda lines: []) is answer
+    assert prompts.asked == [("confirm", "Prepare Singlestep", "The controller is executing a program. Stop it?")]
+    if answer:
+        assert wait_state(session, "break") == "break" and debug.active
+    else:
+        assert session.link.status().program_state == "running" and not debug.active and said == []
+        assert session.link.status().program == "loop"
+
+
+def test_prepare_singlestep_without_prompts_never_stops_a_running_program(session):
+    cmds, _, _ = commands(session)
+    assert cmds.execute(lambda: program(LOOP, "loop.m"), Settings)
+    wait_state(session, "running")
+    said: list[str] = []
+    result = compile_source("i = 1\n", "d.m", debug=True, name="d")
+    assert not DebugSession(session, said.append).prepare(result.image, 1024, lambda lines: [])
+    assert said == ["Controller 1: it is executing a program: stop it first"]
+    assert session.link.status().program_state == "running"

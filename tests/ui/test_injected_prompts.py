@@ -41,3 +41,25 @@ def test_save_to_file_writes_where_the_script_says_and_an_unwritable_place_is_sa
     assert (kind, title) == ("warn", "Save to file") and text.startswith(f"Cannot write {nowhere}")
     assert not nowhere.parent.exists()
 
+
+
+def test_prepare_singlestep_asks_before_it_stops_the_running_program(scripted, qtbot):
+    """As Execute (DG 2385: "the user is asked if the existing program can be stopped"), Prepare Singlestep asks;
+    No leaves the controller's program running, Yes stops it and prepares the debug run (DG L3364-3382)."""
+    w, prompts = scripted
+    editor = w.new_file()
+    editor.setPlainText("i = 0\nWHILE 1 DO\n  i = i + 1\n  DELAY 10\nENDWHILE\n")
+    w.actions_by_text["Execute"].trigger()
+    link = w.bridge.link
+    qtbot.waitUntil(lambda: link.status().program_state == "running", timeout=10000)
+    question = ("confirm", "Prepare Singlestep", "The controller is executing a program. Stop it?")
+    prompts.answers.append(False)
+    w.actions_by_text["Prepare Singlestep"].trigger()
+    qtbot.waitUntil(lambda: question in prompts.asked, timeout=10000)
+    qtbot.wait(300)
+    assert link.status().program_state == "running" and not w.debugger.active
+    assert "Prepare stepping ok" not in w.messages.toPlainText()
+    prompts.answers.append(True)
+    w.actions_by_text["Prepare Singlestep"].trigger()
+    qtbot.waitUntil(lambda: "Prepare stepping ok" in w.messages.toPlainText(), timeout=10000)
+    assert prompts.asked.count(question) == 2 and link.status().program_state == "break"

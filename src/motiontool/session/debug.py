@@ -17,6 +17,7 @@ from typing import Any
 
 from motiontool.comms.link import Link
 from motiontool.comms.protocol import LinkError
+from motiontool.session.prompts import Prompts
 from motiontool.session.session import Runner, Session, run_here
 
 
@@ -30,6 +31,7 @@ class DebugSession:
     session: Session
     say: Callable[[str], None]
     run: Runner = run_here
+    prompts: Prompts | None = None         # asks before a running program is stopped; without it, it is not
     image: Any = None                      # the debug image on the controller, None outside a debug run
     lines: frozenset[int] = frozenset()
 
@@ -44,16 +46,28 @@ class DebugSession:
         self.say(f"Controller {self.session.controller_id}: {exc}")
 
     def prepare(self, image: Any, stack_size: int, loaded: Callable[[frozenset[int]], Sequence[int]]) -> bool:
-        """Prepare Singlestep's requests: stop a running program, download `image`, then (after `loaded` was
-        told the stop lines and gave the breakpoints among them) set the breakpoints and start it stopped."""
+        """Prepare Singlestep's requests: stop a running program if the user agrees (as Execute asks, DG 2385),
+        download `image`, then (after `loaded` was told the stop lines and gave the breakpoints among them) set the
+        breakpoints and start it stopped. False, with the controller as it was, when the user keeps the program."""
         link = self.session.link
         if link is None:
             self._report(LinkError("not connected"))
             return False
         size = len(image.to_bytes())
+        try:
+            running = self._wait("asking its state", lambda: link.status().program_state) == "running"
+        except LinkError as exc:
+            self._report(exc)
+            return False
+        if running:
+            if self.prompts is None:
+                self._report(LinkError("it is executing a program: stop it first"))
+                return False
+            if not self.prompts.confirm("Prepare Singlestep", "The controller is executing a program. Stop it?"):
+                return False
 
         def send() -> None:
-            if link.status().program_state == "running":
+            if running:
                 link.break_program()
             link.download(image.to_bytes(), name=image.name, stack_size=stack_size)
 

@@ -44,7 +44,7 @@ class Debugger(QObject):
         self.editor = None   # the editor whose program is being debugged
         # the debug run's requests and state (session/debug.py); it says what went wrong in the Communication pane
         self.debug = DebugSession(window.connection.session, window.messages.ide,
-                                lambda doing, work: waiting(window, doing, work))
+                                lambda doing, work: waiting(window, doing, work), window.prompts)
         self.watch = WatchPane(window)
         self.watch.set_reader(self.read_watch)
         self.watch.set_writer(self.write_watch)
