@@ -196,6 +196,18 @@ def test_a_blocked_drive_stops_with_error_108(monkeypatch):
     assert bus.simulation[3].error is not None and any(p.startswith("3 ") and "error" in p for p in prints)
 
 
+def test_a_stretch_asked_one_tick_before_a_delay_ends(monkeypatch):
+    """The next tick ends a DELAY: no stretch can run, the tick runs generally."""
+    def build():
+        bus, prints = line(2, tail=DELAY_LOOP)
+        bus.advance(3000)
+        sim = bus.simulation
+        end = min(sim[n].vm.wait.end for n in sim.nodes)
+        bus.advance(end - 1 - sim.time_ms)
+        return bus, prints
+    compare(build, [50, 400], monkeypatch)
+
+
 def test_a_control_window_never_runs_in_stretches(monkeypatch):
     assert compare(lambda: line(2, settings={"REGWMIN": 5, "REGWMAX": 50}), [3000, 100], monkeypatch) == 0
 

@@ -61,6 +61,8 @@ class _Node:
         shift, origin, facts, factm, mu_shift = data.sync_shift, master.origin, cam.facts, cam.factm, cam.mu_shift
         if not all(_number(x) for x in (p, a, shift, origin, facts, factm, mu_shift, master.position)):
             return 0
+        if not factm or not curve.length:  # the tick divides by them: its ZeroDivisionError, not numpy's inf
+            return 0
         steps = np.empty(k + 1)
         steps[0], steps[1:] = master.position, self.v
         position = np.add.accumulate(steps)[1:]          # position = position + v, tick after tick
@@ -277,6 +279,8 @@ def run(sim, ms: int) -> int:
             return 0
         nodes.append(_Node(ctl, v, limit))
         k = min(k, limit)
+    if k < 1:  # the next tick ends a DELAY
+        return 0
     for node in nodes:
         k = min(k, node.targets(k))
         if k <= 0:
