@@ -28,13 +28,14 @@ WAIT_INPUT = "WAITI 8 ON\nPRINT \"input\", APOS\nwait:\nDELAY 250\nPRINT MAPOS\n
 DELAY_LOOP = "again:\nDELAY 333\nPRINT APOS, CPOS\nGOTO again\n"
 
 
-def program(size: int, master: bool, tail: str) -> str:
+def program(size: int, master: bool | str, tail: str) -> str:
+    code = master if isinstance(master, str) else VIRTUAL_MASTER if master else ""
     return (f"DIM stamping[{size}]\nSETCURVE stamping\nDEFMCPOS 1000\nPOSA CURVEPOS\n"
-            f"{VIRTUAL_MASTER if master else ''}SYNCC 0\nSYNCCSTART 0\n{tail}")
+            f"{code}SYNCC 0\nSYNCCSTART 0\n{tail}")
 
 
 def line(axes: int, *, tail: str = WAIT_INPUT, settings: dict | None = None, plants: dict | None = None,
-         interpolation: bool = False) -> tuple[EmbeddedBus, list[str]]:
+         interpolation: bool = False, masters: dict | None = None) -> tuple[EmbeddedBus, list[str]]:
     values = encode(Curve("stamping", 4000, CAM_POINTS, interpolation=interpolation, intervals=40))
     nodes = range(1, axes + 1)
     bus = EmbeddedBus({n: (plants or {}).get(n) for n in nodes}, master_node=1)
@@ -43,7 +44,7 @@ def line(axes: int, *, tail: str = WAIT_INPUT, settings: dict | None = None, pla
         link = bus.link(node)
         link.subscribe(lambda e, node=node: prints.append(f"{node} {e.time_ms} {e.kind} {e.text}")
                        if e.kind in ("print", "error") else None)
-        result = compile_source(program(len(values), node == 1, tail), "cam.m")
+        result = compile_source(program(len(values), (masters or {}).get(node, node == 1), tail), "cam.m")
         assert result.ok, result.diagnostics
         link.call("restore_arrays", arrays=[{"name": "stamping", "values": values}])
         for key, value in {**CAM_SETTINGS, **(settings or {})}.items():
@@ -210,6 +211,50 @@ def test_a_stretch_asked_one_tick_before_a_delay_ends(monkeypatch):
 
 def test_a_control_window_never_runs_in_stretches(monkeypatch):
     assert compare(lambda: line(2, settings={"REGWMIN": 5, "REGWMAX": 50}), [3000, 100], monkeypatch) == 0
+
+
+MASTERS = {  # review of ccc414c: master speeds the benchmark's line does not have
+    "negative master speed": {1: "PULSACC 100000\nPULSVEL -37236\n"},
+    "a second node's own PULSVEL": {3: "PULSACC 50000\nPULSVEL 20000\n"},
+    "curve cycles out of phase": {1: VIRTUAL_MASTER, 2: "DEFMCPOS 2500\n", 3: "DEFMCPOS 1700\n"},
+}
+
+
+@pytest.mark.parametrize("name", sorted(MASTERS))
+def test_master_speeds(name: str, monkeypatch):
+    assert compare(lambda: line(3, masters=MASTERS[name]), uneven(6000, 5), monkeypatch) > 2500
+
+
+def test_requests_between_advances(monkeypatch):
+    """A parameter written and the virtual master stopped ([Esc], DG 10782) between two advances: the next
+    stretch starts from what they changed."""
+    def build():
+        bus, prints = line(3)
+        bus.advance(3000)
+        bus.link(2).write_parameter("KPROP", 90)
+        bus.advance(500)
+        bus.simulation[1].master.stop_virtual()
+        return bus, prints
+    assert compare(build, [1, 40, 700, 2500], monkeypatch) > 2500
+
+
+def test_print_output_taken_line_by_line(monkeypatch):
+    """A link that takes one PRINT line per ms (a paced link's rate): the lines a DELAY loop prints leave over
+    the next ticks, each at its own time, so the line is not steady while any is left."""
+    def build():
+        bus, prints = line(2, tail="again:\nDELAY 150\n" + "PRINT APOS\n" * 40 + "GOTO again\n")
+        for node in bus.nodes:
+            bus.simulation[node].output_per_tick = 1
+        return bus, prints
+    assert compare(build, uneven(5000, 6), monkeypatch) > 1500
+
+
+def test_an_armed_interrupt_keeps_the_line_general(monkeypatch):
+    """ON PERIOD n every n ms (DG 6325-6351) while the program waits in WAITI: a tick may run the handler, so
+    no stretch runs; the handler's PRINT comes at the same ms."""
+    tail = "ON PERIOD 170 GOSUB beat\nWAITI 8 ON\nPRINT 0\nSUBMAINPROG\nSUBPROG beat\nPRINT APOS\nRETURN\n" \
+        "ENDPROG\n"
+    assert compare(lambda: line(2, tail=tail), [2000, 333, 700], monkeypatch) == 0
 
 
 @settings(max_examples=200, deadline=None)
