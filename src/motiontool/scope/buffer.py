@@ -14,6 +14,7 @@ DEFAULT_CAPACITY = 10_000   # the manual's example "max number of samples" (DG 5
 
 class RingBuffer:
     def __init__(self, capacity: int = DEFAULT_CAPACITY):
+        self.version = 0        # changes on every write: caches of derived data compare it
         self._allocate(capacity)
 
     def _allocate(self, capacity: int) -> None:
@@ -24,7 +25,6 @@ class RingBuffer:
         self._y = np.zeros(2 * self.capacity)
         self._head = 0          # next write position in [0, capacity)
         self.count = 0
-        self.version = 0        # changes on every write: caches of derived data compare it
 
     def __len__(self) -> int:
         return self.count
@@ -73,6 +73,7 @@ class RingBuffer:
         t, y = (a.copy() for a in self.arrays())
         self._allocate(capacity)
         self.extend(t, y)
+        self.version += 1       # never back to an old value: a view cached by version would stay stale
 
 
 def visible_slice(t: np.ndarray, x0: float, x1: float) -> slice:
