@@ -257,6 +257,15 @@ def test_an_armed_interrupt_keeps_the_line_general(monkeypatch):
     assert compare(lambda: line(2, tail=tail), [2000, 333, 700], monkeypatch) == 0
 
 
+def test_a_software_limit_reached_in_the_line(monkeypatch):
+    """POSLIMIT active (SWPOSLIMACT): the CAM axis reaching it stops with error 111 (DG 10213) at the same ms."""
+    build = lambda: line(2, settings={"POSLIMIT": 30000, "SWPOSLIMACT": 1})  # noqa: E731
+    compare(build, uneven(6000, 7), monkeypatch)
+    bus, prints = build()
+    bus.advance(6000)
+    assert any(" error " in p for p in prints)
+
+
 @settings(max_examples=200, deadline=None)
 @given(st.floats(-1e9, 1e9), st.lists(st.floats(-1e4, 1e4), min_size=1, max_size=300))
 def test_accumulate_adds_in_sequence(start: float, increments: list[float]):
