@@ -98,7 +98,7 @@ class _Node:
             accel[1:] = vt[1:k] - vt[:k - 1]
         self.position, self.raw, self.m = position[:k].tolist(), raw[:k].tolist(), m[:k].tolist()
         self.t, self.vt, self.accel = t[:k].tolist(), vt[:k].tolist(), accel.tolist()
-        self.piece = int(j[k - 1]) if k and not curve.linear else None
+        self.pieces = None if curve.linear else j[:k]  # each tick's piece: curve.at keeps the last one
         return k
 
     # --- the closed loop: position law and plant ------------------------------------------------------------
@@ -187,8 +187,8 @@ class _Node:
         sync._last_m = self.m[k - 1]
         sync._prev_t = self.t[k - 2] if k > 1 else sync._last_t
         sync._last_t = sync.target = t = self.t[k - 1]
-        if self.piece is not None:
-            sync.cam.curve._piece = sync.cam.curve._pieces[self.piece]
+        if self.pieces is not None:  # the stretch may end before the ticks this node planned
+            sync.cam.curve._piece = sync.cam.curve._pieces[int(self.pieces[k - 1])]
         pg = axis.profile
         pg.position, pg.acceleration, pg.velocity = t, self.accel[k - 1], self.vt[k - 1]
         assert self.state is not None  # run() followed every node to the stretch's end
