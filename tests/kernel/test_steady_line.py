@@ -30,8 +30,10 @@ DELAY_LOOP = "again:\nDELAY 333\nPRINT APOS, CPOS\nGOTO again\n"
 
 def program(size: int, master: bool | str, tail: str) -> str:
     code = master if isinstance(master, str) else VIRTUAL_MASTER if master else ""
-    return (f"DIM stamping[{size}]\nSETCURVE stamping\nDEFMCPOS 1000\nPOSA CURVEPOS\n"
-            f"{code}SYNCC 0\nSYNCCSTART 0\n{tail}")
+    dims = [t for t in tail.splitlines(keepends=True) if t.startswith("DIM ")]  # DIM comes first (DG 6439)
+    rest = "".join(t for t in tail.splitlines(keepends=True) if not t.startswith("DIM "))
+    return (f"DIM stamping[{size}]\n{''.join(dims)}SETCURVE stamping\nDEFMCPOS 1000\nPOSA CURVEPOS\n"
+            f"{code}SYNCC 0\nSYNCCSTART 0\n{rest}")
 
 
 def line(axes: int, *, tail: str = WAIT_INPUT, settings: dict | None = None, plants: dict | None = None,
@@ -277,3 +279,11 @@ def test_accumulate_adds_in_sequence(start: float, increments: list[float]):
         expected.append(position)
     assert np.add.accumulate(steps)[1:].tolist() == expected
     assert [math.floor(p) for p in expected] == np.floor(np.add.accumulate(steps)[1:]).astype(int).tolist()
+
+
+def test_a_testsetp_recording_runs_tick_by_tick(monkeypatch):
+    """TESTSETP/TESTSTART record every interval (DG 7121-7135): while the recorder runs, no stretch; after it, the
+    line runs in stretches again and the array holds the same samples."""
+    tail = "DIM rec[4500]\nTESTSETP 2 4097 4098 4102 rec\nTESTSTART 0\n" + WAIT_INPUT  # 3 s of samples
+    assert compare(lambda: line(2, tail=tail), uneven(6500, 9), monkeypatch) > 1000
+
