@@ -99,7 +99,7 @@ class RunControl:
             if scope.variant == "single_shot":
                 group = next((g for g in scope.groups if g.method == "single_shot" and g.active), None)
                 if group is None:
-                    raise ValueError("no active Single Shot group")
+                    raise ValueError("No active Single Shot group")
                 self.single_shot = SingleShot(scope, link, group.name)
                 self.single_shot.start(run=lambda request: wait(w, "Starting the Single Shot recording …",
                                                                 request))
@@ -117,7 +117,7 @@ class RunControl:
                     self.poll_timer.setInterval(scope.settings.poll_ms)
                     self.poll_timer.start()
                 if not groups and not self.polling.curves():
-                    raise ValueError("no active curve to record: add a curve first")
+                    raise ValueError("No active curve to record: add a curve first")
         except (ValueError, LinkError) as exc:
             w.prompts.warn("Oscilloscope", str(exc)) if w.ask else None
             w.statusBar().showMessage(str(exc), 10000)
