@@ -2,12 +2,12 @@
 
 While every node of a Simulation is in the steady state of kernel/tick.py — its axis locked on its CAM curve in one
 master cycle, its master counter at a constant speed, its program waiting on an input or a time no tick can change
-(or not running), nothing else armed — the next ticks differ only by the master's increments. A `Line` then runs
-a stretch of them node by node instead of tick by tick:
+(or not running), nothing else armed — the next ticks differ only by the master's increments. `run` then runs a
+stretch of them node by node instead of tick by tick:
 
 * the master positions and every axis's CAM targets, which do not feed back, for the whole stretch at once with
   numpy — the same IEEE operations element by element (np.add.accumulate adds in sequence like the tick does;
-  integers stay below 2^53, where float64 holds them exactly);
+  integers stay below 2^50, where float64 and Python's ints agree);
 * the position law and the plant, which feed back, in one tight loop per axis (the statements of
   steady_cam_tick);
 * the marker inputs' test per tick, calling Markers.tick itself where an index pulse passes.
@@ -40,16 +40,23 @@ def _number(x) -> bool:
     return type(x) in (int, float) and abs(x) < _EXACT
 
 
+def _marker_key(ctl) -> tuple:
+    """What the markers' fast path was computed for (controller_tick's key: scaling, 32-31, 33-19, 33-20)."""
+    values = ctl.params.values
+    return ctl.axis.scaling, values[3231], values[3319], values[3320]
+
+
 class _Node:
     """One controller's part of a stretch: its constants, then its computed ticks."""
 
-    def __init__(self, ctl, velocity: float, limit: int):
-        self.ctl, self.v, self.limit = ctl, velocity, limit
-        self.axis = axis = ctl.axis
-        self.sync = axis.sync
+    state: tuple | None  # the closed loop's state after the ticks `follow` was asked for (None: it stopped earlier)
+
+    def __init__(self, ctl, velocity: float):
+        self.ctl, self.v = ctl, velocity
+        self.axis = ctl.axis
+        self.sync = ctl.axis.sync
         self.markers = ctl.markers
-        values = ctl.params.values
-        self.key = (axis.scaling, values[3231], values[3319], values[3320])
+        self.key = _marker_key(ctl)
 
     # --- the open-loop part: master and CAM targets --------------------------------------------------------
     def targets(self, k: int) -> int:
@@ -116,7 +123,6 @@ class _Node:
         blocked, friction = cfg.blocked, cfg.friction
         limit = cfg.speed_limit * axis.scaling.vmax
         self.asked = k
-        self.state: tuple | None
         positions: list[float] = []
         keep = positions.append
         for t, vt, acc in zip(self.t[:k], self.vt[:k], self.accel[:k], strict=True):
@@ -243,9 +249,7 @@ def _steady_controller(ctl) -> int | None:
             or can.inbox or can.busy or can.heartbeat_ms or can.pdo.active or can.sdo.channels
             or (can.own_bus and (can.bus.pending or can.bus.injected))):
         return None
-    markers = ctl.markers
-    values = ctl.params.values
-    key = (axis.scaling, values[3231], values[3319], values[3320])
+    markers, key = ctl.markers, _marker_key(ctl)
     if not (key == markers._q_key or markers._quiet(key)):
         return None
     return _wait_limit(ctl)
@@ -277,7 +281,7 @@ def run(sim, ms: int) -> int:
         v = _master_velocity(ctl.master)
         if limit is None or v is None or not _number(v):
             return 0
-        nodes.append(_Node(ctl, v, limit))
+        nodes.append(_Node(ctl, v))
         k = min(k, limit)
     if k < 1:  # the next tick ends a DELAY
         return 0
