@@ -60,37 +60,26 @@ class CTSyncLine:
         drives = self.drives
         period = drives[0].period_ns
         steady_tick = fused.steady_tick    # ApcDrive.tick's first step, called here without the method's call
-        sent = None
-        if message is not None and fault is None:
-            # the usual sample: each node gets the message just before it runs (no node reads another's)
-            received = (*message, 1)
+        received = (*message, 1) if message is not None and fault is None else None
+        if received is None:   # the previous data stay, with this sample's status
+            missing = fault == "missing" or message is None and self.samples > 1 and bool(self.masters())
             for d in drives:
-                if d.period_ns != period:
-                    self._deliver_rest(d, received)
-                    raise CTSyncRateError(self)
-                d.ctsync_received = received
-                d.ctsync_counts[0] += 1
-                d.ctsync_out = None
-                if not steady_tick(d):
-                    d.tick()
-                out = d.ctsync_out
-                if out is not None:
-                    sent = out
-            self._in_flight = sent
-            return
-        # the previous data stay, with this sample's status
-        missing = fault == "missing" or message is None and self.samples > 1 and bool(self.masters())
-        for d in drives:
-            if message is None or fault == "missing":
-                d.ctsync_received = (*d.ctsync_received[:3], 0)
-                d.ctsync_counts[2] += missing
-            else:  # a message was sent, so this branch means a fault
-                assert fault is not None
-                d.ctsync_received = (*d.ctsync_received[:3], FAULT_STATUS[fault])
-                d.ctsync_counts[1] += 1
+                if message is None or fault == "missing":
+                    d.ctsync_received = (*d.ctsync_received[:3], 0)
+                    d.ctsync_counts[2] += missing
+                else:  # a message was sent, so this branch means a fault
+                    assert fault is not None
+                    d.ctsync_received = (*d.ctsync_received[:3], FAULT_STATUS[fault])
+                    d.ctsync_counts[1] += 1
+        sent = None
         for d in drives:
             if d.period_ns != period:      # a REINIT in a node's program (L2077; checked here, sample by sample)
+                if received is not None:
+                    self._deliver_rest(d, received)
                 raise CTSyncRateError(self)
+            if received is not None:       # the usual sample: each node gets it just before it runs
+                d.ctsync_received = received
+                d.ctsync_counts[0] += 1
             d.ctsync_out = None
             if not steady_tick(d):
                 d.tick()
